@@ -1,0 +1,90 @@
+// TaskSpec: one environment of the benchmark (world + 10 start/goal pairs), as loaded from a task
+// file (docs/task_format.md). Plain data: no I/O here; tools/io/task_io.h reads and writes it.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "vb/engine/types.h"
+#include "vb/terrain/surface_class.h"
+
+namespace vb::terrain {
+
+// Regular grid of terrain heights. Vertex (row r, col c) is at
+//   x = -size_x/2 + c * spacing_x,  y = +size_y/2 - r * spacing_y
+// i.e. row 0 is the north (+y) edge and column 0 the west (-x) edge, as image pixels.
+struct HeightGrid {
+  int rows = 0;
+  int cols = 0;
+  std::vector<double> heights_m;  // row-major, rows*cols
+  double At(int r, int c) const { return heights_m[static_cast<size_t>(r) * cols + c]; }
+};
+
+// Semantics: rows x cols patches covering the world; patch (0,0) is the north-west corner.
+struct PatchGrid {
+  int rows = 0;
+  int cols = 0;
+  std::vector<SurfaceClass> classes;  // row-major
+  std::vector<double> friction;       // row-major; rigid: Coulomb mu; deformable: 0 (unused)
+  SurfaceClass ClassAt(int r, int c) const { return classes[static_cast<size_t>(r) * cols + c]; }
+  double FrictionAt(int r, int c) const { return friction[static_cast<size_t>(r) * cols + c]; }
+};
+
+// A rock: collision box (4.4, 4.4, 3.8) m * scale, as the original, centred on the terrain
+// surface at (x, y) (half of it below ground).
+struct RockSpec {
+  double x_m = 0.0;
+  double y_m = 0.0;
+  double scale = 1.0;
+};
+// A tree: collision box (1, 1, 5) m, standing on the terrain at (x, y).
+struct TreeSpec {
+  double x_m = 0.0;
+  double y_m = 0.0;
+};
+
+struct StartGoalPair {
+  Vec2 start_m = Vec2::Zero();
+  Vec2 goal_m = Vec2::Zero();
+  std::vector<Vec2> path_m;  // precomputed global path, start to goal (world x, y)
+};
+
+enum class ElevationLevel { kLow, kMid, kHigh };
+enum class TerrainType { kRigid, kDeformable, kMixed };
+enum class ObstacleDensity { kSparse, kMedium, kDense };
+
+struct TaskLabels {
+  ElevationLevel elevation = ElevationLevel::kLow;
+  TerrainType terrain = TerrainType::kRigid;
+  ObstacleDensity density = ObstacleDensity::kSparse;
+};
+
+struct TaskSpec {
+  static constexpr int kFormatVersion = 1;
+
+  std::string name;          // e.g. "env042"
+  std::string source_file;   // task file path as given (for messages and provenance)
+  uint64_t generator_seed = 0;  // seed the environment was generated from (provenance)
+
+  // World geometry: a size_x_m x size_y_m rectangle centred at the origin.
+  double size_x_m = 128.0;
+  double size_y_m = 128.0;
+  double scale = 1.0;          // 1, 1/6, 1/10: scale variant (all lengths already scaled)
+  std::string height_image;    // path of the height image, relative to the task file
+  double min_height_m = 0.0;   // height of pixel value 0
+  double max_height_m = 0.0;   // height of the largest pixel value (255 or 65535)
+  HeightGrid heights;          // decoded from height_image by the loader
+
+  PatchGrid patches;
+  std::vector<RockSpec> rocks;
+  std::vector<TreeSpec> trees;
+  std::vector<StartGoalPair> pairs;
+  TaskLabels labels;
+};
+
+std::string_view ElevationLevelName(ElevationLevel v);
+std::string_view TerrainTypeName(TerrainType v);
+std::string_view ObstacleDensityName(ObstacleDensity v);
+
+}  // namespace vb::terrain

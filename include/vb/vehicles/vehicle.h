@@ -1,0 +1,76 @@
+// A wheeled vehicle assembled from VehicleParams on the physics adapter, with vb's own
+// wheel-ground contact. Order per step (the runner calls it): SetInputs -> Synchronize (contact,
+// tire, suspension, powertrain and brake forces for this step) -> world.Step(dt) -> UpdateState.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "vb/engine/physics_world.h"
+#include "vb/engine/types.h"
+#include "vb/terrain/surface_class.h"
+#include "vb/terrain/terrain.h"
+#include "vb/vehicles/vehicle_params.h"
+
+namespace vb::vehicles {
+
+// Driver inputs, as Chrono's DriverInputs.
+struct DriverInputs {
+  double throttle = 0.0;   // [0, 1]
+  double steering = 0.0;   // [-1, 1], +1 = full left
+  double braking = 0.0;    // [0, 1]
+};
+
+struct WheelState {
+  bool in_contact = false;
+  terrain::SurfaceClass surface = terrain::SurfaceClass::kDirt;
+  double normal_force_n = 0.0;
+  double sinkage_m = 0.0;          // rigid ground: 0 (the soil solver will fill it)
+  double spin_radps = 0.0;
+  double suspension_travel_m = 0.0;
+  Vec3 center_W = Vec3::Zero();
+};
+
+struct VehicleState {
+  Pose pose_W;                      // chassis reference frame (not the COM)
+  Vec3 velocity_W = Vec3::Zero();   // of the reference point
+  Vec3 angular_velocity_W = Vec3::Zero();
+  double forward_speed_mps = 0.0;   // velocity along chassis x
+  Rpy rpy;
+  int gear = 1;
+  double engine_speed_radps = 0.0;
+  double engine_torque_nm = 0.0;
+  std::vector<WheelState> wheels;   // axle-major: axle 0 left, axle 0 right, axle 1 left, ...
+};
+
+class Vehicle {
+ public:
+  // Adds the vehicle to the world with its chassis reference frame at `pose_W`, wheels at their
+  // design position. The terrain is kept by reference and must outlive the vehicle.
+  Vehicle(const VehicleParams& params, const terrain::Terrain& terrain, const Pose& pose_W,
+          engine::PhysicsWorld* world);
+  ~Vehicle();
+
+  void SetInputs(const DriverInputs& inputs);
+  // Computes and applies this step's forces (call right before world.Step(dt)).
+  void Synchronize(double dt);
+  // Reads the post-step state (call right after world.Step(dt)).
+  void UpdateState();
+
+  const VehicleState& state() const { return state_; }
+  const VehicleParams& params() const { return params_; }
+  const DriverInputs& inputs() const { return inputs_; }
+  engine::MultiBodyId body() const { return body_; }
+
+ private:
+  struct Internals;
+  VehicleParams params_;
+  const terrain::Terrain& terrain_;
+  engine::PhysicsWorld* world_;
+  engine::MultiBodyId body_ = -1;
+  DriverInputs inputs_;
+  VehicleState state_;
+  std::unique_ptr<Internals> in_;
+};
+
+}  // namespace vb::vehicles

@@ -1,0 +1,22 @@
+// Strict reading and writing of task files (docs/task_format.md). yaml-cpp and OpenCV are used
+// only in tools/io. Every error is an InputError naming file, line and key.
+#pragma once
+
+#include <string>
+
+#include "vb/terrain/task.h"
+
+namespace vb::io {
+
+// Loads and validates a task file and decodes its height image into task.heights.
+terrain::TaskSpec LoadTask(const std::string& path);
+
+// Writes a task file (format version 1). The height image is written next to it by
+// WriteHeightImage; task.height_image must already hold its path relative to the task file.
+void SaveTask(const terrain::TaskSpec& task, const std::string& path);
+
+// Writes heights as a 16-bit grayscale PNG: pixel = round((h - min)/(max - min) * 65535).
+void WriteHeightImage(const terrain::HeightGrid& heights, double min_height_m, double max_height_m,
+                      const std::string& path);
+
+}  // namespace vb::io
