@@ -25,6 +25,11 @@ class PidController : public Controller {
   void Reset(const EpisodeContext& context) override;
   Command Update(const Observation& obs) override;
 
+  // Introspection for tests and diagnostics: the path being followed (world x, y) and the number
+  // of planner calls since Reset (successful or not).
+  const std::vector<Vec2>& path() const { return path_m_; }
+  int replan_count() const { return replan_count_; }
+
  private:
   PidParams params_;
   EpisodeContext context_;
@@ -32,6 +37,7 @@ class PidController : public Controller {
   size_t local_goal_index_ = 0;
   double last_replan_s_ = -1e9;
   double steering_ = 0.0;
+  int replan_count_ = 0;
 };
 
 }  // namespace vb::controllers

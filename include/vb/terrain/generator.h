@@ -23,4 +23,21 @@ struct GeneratorOptions {
 // the image and sets the path). Every pair is guaranteed connected on the inflated grid.
 TaskSpec GenerateTask(const GeneratorOptions& options);
 
+// Elevation statistics computed as reference_verti_bench.md §9 does for the original worlds
+// (central-difference gradients, one-sided at the border; roughness = std of h minus its 9x9 box
+// mean with clamped borders), so generated worlds can be compared with its per-level table.
+struct ElevationStats {
+  double range_m = 0.0;
+  double mean_m = 0.0;
+  double std_m = 0.0;
+  double mean_gradient = 0.0;       // mean |grad h| (m/m)
+  double mean_slope_deg = 0.0;
+  double p95_slope_deg = 0.0;
+  double max_slope_deg = 0.0;
+  double fraction_above_20deg = 0.0;
+  double fraction_above_30deg = 0.0;
+  double roughness_m = 0.0;
+};
+ElevationStats ComputeElevationStats(const HeightGrid& heights, double spacing_m);
+
 }  // namespace vb::terrain

@@ -77,7 +77,7 @@ struct EngineParams {
 
 struct TransmissionParams {
   std::vector<double> forward_ratios;   // output/input, gear 1 first
-  double reverse_ratio = 0.0;
+  double reverse_ratio = 0.0;           // magnitude (> 0) of the reverse gear ratio
   std::vector<double> upshift_rpm;      // per gear
   std::vector<double> downshift_rpm;    // per gear
 };

@@ -1,0 +1,45 @@
+// Rigid-tire / rigid-ground contact owned by vb (not Bullet): one contact point per wheel at the
+// lowest point of the wheel disc relative to the local terrain plane.
+//  - Normal: penalty spring-damper on the penetration, never pulling.
+//  - Tangential: an elastic bristle (stick state) with damping, limited by Coulomb
+//    |Ft| <= mu*Fn with mu = min(tire mu, patch mu) (Chrono's NSC composition). The bristle holds
+//    static loads exactly, so a braked vehicle on a slope below atan(mu) does not creep, which a
+//    velocity-regularised Coulomb law cannot do.
+#pragma once
+
+#include "vb/engine/types.h"
+#include "vb/terrain/terrain.h"
+#include "vb/vehicles/vehicle_params.h"
+
+namespace vb::vehicles {
+
+// Where the wheel touches the ground (geometry only).
+struct ContactGeometry {
+  bool in_contact = false;
+  Vec3 point_W = Vec3::Zero();      // lowest point of the wheel disc
+  Vec3 normal_W = Vec3::UnitZ();    // terrain normal there
+  double penetration_m = 0.0;       // along the normal, > 0 when in contact
+  terrain::SurfaceClass surface = terrain::SurfaceClass::kDirt;
+  double patch_friction = 0.0;
+};
+
+// Finds the contact of a wheel of radius r with centre c_W and spin axis axis_W (unit).
+ContactGeometry FindWheelContact(const terrain::Terrain& terrain, const Vec3& c_W,
+                                 const Vec3& axis_W, double radius_m);
+
+// Bristle state of one contact (world-frame tangential deflection, m).
+struct BristleState {
+  Vec3 deflection_W = Vec3::Zero();
+};
+
+struct ContactForce {
+  Vec3 force_W = Vec3::Zero();      // total force on the wheel at the contact point
+  double normal_force_n = 0.0;
+};
+
+// Contact force for this step. v_point_W: velocity of the wheel material point at the contact.
+// Updates the bristle state (reset when contact is lost).
+ContactForce ComputeContactForce(const TireParams& tire, const ContactGeometry& contact,
+                                 const Vec3& v_point_W, double dt, BristleState* bristle);
+
+}  // namespace vb::vehicles

@@ -1,0 +1,239 @@
+// Wheeled vehicle on the physics adapter. Multibody topology per wheel (axle-major order):
+//   base (chassis COM) --prismatic z--> carrier --[revolute z: steering knuckle]--> wheel (revolute y)
+// The carrier slides along chassis z (strut suspension, travel limited by joint limits = bump and
+// rebound stops); steered axles have a knuckle link; wheels spin about their y axis.
+#include "vb/vehicles/vehicle.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "vb/vehicles/powertrain.h"
+#include "vb/vehicles/tire_contact.h"
+
+namespace vb::vehicles {
+
+struct Vehicle::Internals {
+  struct Corner {
+    int carrier_link = -1;
+    int knuckle_link = -1;  // -1 if not steered
+    int wheel_link = -1;
+    double side = 1.0;      // +1 left, -1 right
+    const AxleParams* axle = nullptr;
+    BristleState bristle;
+  };
+  std::vector<Corner> corners;
+  PowertrainState powertrain;
+  double corner_sprung_mass_kg = 0.0;   // chassis mass per wheel
+  Vec3 com_B = Vec3::Zero();
+  double steer_wheelbase_m = 0.0;  // steered axle to the turning-centre line (unsteered axles)
+  // Per-step scratch (allocated once).
+  std::vector<double> wheel_speeds;
+  std::vector<bool> driven;
+  std::vector<double> wheel_torques;
+};
+
+namespace {
+
+// Damping coefficient to use with explicit forces so that a damper c acting on a mode of mass m
+// behaves as if integrated implicitly: F = -c v / (1 + c dt / m). Explicit dampers with
+// c dt / m near 2 ring at the step frequency (the stiff wheel-hop mode of a heavy truck at 5 ms
+// does); this form is stable for any c and tends to the plain damper as dt -> 0.
+double ImplicitDamping(double c, double dt, double mass_kg) { return c / (1.0 + c * dt / mass_kg); }
+
+// Road-wheel angles (left, right) for a steering input in [-1, 1]. Ackermann: the inner wheel
+// gets the full angle, the outer one the angle that shares its turning centre.
+void SteeringAngles(const SteeringParams& s, double input, double wheelbase_m, double track_m,
+                    double* left, double* right) {
+  const double inner = std::clamp(input, -1.0, 1.0) * s.max_angle_rad;
+  if (!s.ackermann || std::abs(inner) < 1e-9 || wheelbase_m <= 0.0) {
+    *left = *right = inner;
+    return;
+  }
+  const double radius = wheelbase_m / std::tan(std::abs(inner));  // at the inner wheel
+  const double outer = std::atan(wheelbase_m / (radius + track_m));
+  if (inner > 0) {  // left turn: left wheel inside
+    *left = inner;
+    *right = outer;
+  } else {
+    *right = inner;
+    *left = -outer;
+  }
+}
+
+}  // namespace
+
+Vehicle::Vehicle(const VehicleParams& params, const terrain::Terrain& terrain, const Pose& pose_W,
+                 engine::PhysicsWorld* world)
+    : params_(params), terrain_(terrain), world_(world), in_(std::make_unique<Internals>()) {
+  const ChassisParams& ch = params_.chassis;
+  in_->com_B = ch.com_B;
+
+  // chassis: base body at the COM, collision box offset from it
+  engine::MultiBodyBaseSpec base;
+  base.mass_kg = ch.mass_kg;
+  base.inertia_kgm2 = ch.inertia_kgm2;
+  base.pose_W.rotation = pose_W.rotation;
+  base.pose_W.position = pose_W.position + pose_W.rotation * ch.com_B;
+  base.boxes.push_back({ch.collision_box_center_B - ch.com_B, ch.collision_box_size_m / 2.0});
+
+  // wheels, axle-major, left then right
+  std::vector<engine::MultiBodyLinkSpec> links;
+  double steered_x_sum = 0.0, fixed_x_sum = 0.0;
+  int n_steered = 0, n_fixed = 0;
+  for (const AxleParams& axle : params_.axles) {
+    if (axle.steered) {
+      steered_x_sum += axle.x_m;
+      ++n_steered;
+    } else {
+      fixed_x_sum += axle.x_m;
+      ++n_fixed;
+    }
+    for (double side : {1.0, -1.0}) {
+      Internals::Corner corner;
+      corner.side = side;
+      corner.axle = &axle;
+      const Vec3 center_B(axle.x_m, side * axle.half_track_m, axle.z_m);
+      const SuspensionParams& su = axle.suspension;
+
+      engine::MultiBodyLinkSpec carrier;
+      carrier.parent = -1;
+      carrier.joint = engine::JointType::kPrismatic;
+      carrier.axis_P = Vec3::UnitZ();
+      carrier.parent_com_to_joint_P = center_B - ch.com_B;
+      carrier.mass_kg = axle.steered ? su.carrier_mass_kg / 2.0 : su.carrier_mass_kg;
+      carrier.inertia_kgm2 = su.carrier_inertia_kgm2;
+      carrier.limit_lower = -su.rebound_travel_m;
+      carrier.limit_upper = su.bump_travel_m;
+      corner.carrier_link = static_cast<int>(links.size());
+      links.push_back(carrier);
+      int parent = corner.carrier_link;
+
+      if (axle.steered) {
+        engine::MultiBodyLinkSpec knuckle;
+        knuckle.parent = parent;
+        knuckle.joint = engine::JointType::kRevolute;
+        knuckle.axis_P = Vec3::UnitZ();
+        knuckle.mass_kg = su.carrier_mass_kg / 2.0;
+        knuckle.inertia_kgm2 = su.carrier_inertia_kgm2;
+        corner.knuckle_link = static_cast<int>(links.size());
+        links.push_back(knuckle);
+        parent = corner.knuckle_link;
+      }
+
+      engine::MultiBodyLinkSpec wheel;
+      wheel.parent = parent;
+      wheel.joint = engine::JointType::kRevolute;
+      wheel.axis_P = Vec3::UnitY();
+      wheel.mass_kg = params_.wheel.mass_kg;
+      wheel.inertia_kgm2 = params_.wheel.inertia_kgm2;
+      wheel.has_cylinder = true;
+      wheel.cylinder.radius_m = params_.wheel.radius_m;
+      wheel.cylinder.half_width_m = params_.wheel.width_m / 2.0;
+      corner.wheel_link = static_cast<int>(links.size());
+      links.push_back(wheel);
+      in_->corners.push_back(corner);
+    }
+  }
+  if (n_steered > 0 && n_fixed > 0)
+    in_->steer_wheelbase_m = std::abs(steered_x_sum / n_steered - fixed_x_sum / n_fixed);
+
+  body_ = world_->AddMultiBody(base, links, /*contact_friction=*/0.8);
+  in_->corner_sprung_mass_kg = ch.mass_kg / static_cast<double>(in_->corners.size());
+
+  const size_t n = in_->corners.size();
+  in_->wheel_speeds.assign(n, 0.0);
+  in_->wheel_torques.assign(n, 0.0);
+  in_->driven.assign(n, false);
+  for (size_t i = 0; i < n; ++i) in_->driven[i] = in_->corners[i].axle->driven;
+  state_.wheels.resize(n);
+  UpdateState();
+}
+
+Vehicle::~Vehicle() = default;
+
+void Vehicle::SetInputs(const DriverInputs& inputs) {
+  inputs_.throttle = std::clamp(inputs.throttle, 0.0, 1.0);
+  inputs_.steering = std::clamp(inputs.steering, -1.0, 1.0);
+  inputs_.braking = std::clamp(inputs.braking, 0.0, 1.0);
+}
+
+void Vehicle::Synchronize(double dt) {
+  const size_t n = in_->corners.size();
+
+  // steering: implicit position servos on the knuckles
+  const double track = params_.axles.empty() ? 0.0 : 2.0 * params_.axles.front().half_track_m;
+  double left = 0.0, right = 0.0;
+  SteeringAngles(params_.steering, inputs_.steering, in_->steer_wheelbase_m, track, &left, &right);
+
+  // powertrain: wheel drive torques from the engine map through gears and differentials
+  for (size_t i = 0; i < n; ++i)
+    in_->wheel_speeds[i] = world_->JointVelocity(body_, in_->corners[i].wheel_link);
+  ComputeWheelTorques(params_, inputs_.throttle, in_->wheel_speeds, in_->driven, &in_->powertrain,
+                      &in_->wheel_torques);
+
+  for (size_t i = 0; i < n; ++i) {
+    Internals::Corner& c = in_->corners[i];
+    const AxleParams& axle = *c.axle;
+    const SuspensionParams& su = axle.suspension;
+
+    if (c.knuckle_link >= 0)
+      world_->SetJointPositionMotor(body_, c.knuckle_link, c.side > 0 ? left : right, 1e5);
+
+    // suspension strut: preloaded linear spring-damper pushing the wheel down; the damper acts on
+    // the reduced mass of the wheel carrier against its share of the chassis
+    const double unsprung_kg = su.carrier_mass_kg + params_.wheel.mass_kg;
+    const double strut_mass_kg =
+        unsprung_kg * in_->corner_sprung_mass_kg / (unsprung_kg + in_->corner_sprung_mass_kg);
+    const double s = world_->JointPosition(body_, c.carrier_link);
+    const double s_dot = world_->JointVelocity(body_, c.carrier_link);
+    const double c_strut = ImplicitDamping(su.damping_nspm, dt, strut_mass_kg);
+    world_->AddJointForce(body_, c.carrier_link,
+                          -(su.preload_n + su.stiffness_npm * s + c_strut * s_dot));
+
+    // drive torque on the wheel joint; brakes as an implicit velocity motor (no creep when held)
+    world_->AddJointForce(body_, c.wheel_link, in_->wheel_torques[i]);
+    world_->SetJointVelocityMotor(body_, c.wheel_link, 0.0, inputs_.braking * axle.brake_torque_nm);
+
+    // wheel-ground contact
+    const Pose wheel = world_->LinkPose(body_, c.wheel_link);
+    const Vec3 axis_W = wheel.rotation * Vec3::UnitY();
+    const ContactGeometry geo =
+        FindWheelContact(terrain_, wheel.position, axis_W, params_.wheel.radius_m);
+    Vec3 v_point = Vec3::Zero();
+    if (geo.in_contact) v_point = world_->LinkPointVelocity(body_, c.wheel_link, geo.point_W);
+    TireParams tire = params_.tire;
+    tire.normal_damping_nspm = ImplicitDamping(tire.normal_damping_nspm, dt, unsprung_kg);
+    const ContactForce f = ComputeContactForce(tire, geo, v_point, dt, &c.bristle);
+    if (geo.in_contact) world_->ApplyLinkForce(body_, c.wheel_link, f.force_W, geo.point_W);
+
+    WheelState& ws = state_.wheels[i];
+    ws.in_contact = geo.in_contact && f.normal_force_n > 0.0;
+    ws.surface = geo.surface;
+    ws.normal_force_n = f.normal_force_n;
+    ws.sinkage_m = 0.0;
+  }
+}
+
+void Vehicle::UpdateState() {
+  const Pose com = world_->BasePose(body_);
+  const Vec3 v_com = world_->BaseLinearVelocity(body_);
+  const Vec3 w = world_->BaseAngularVelocity(body_);
+  state_.pose_W.rotation = com.rotation;
+  state_.pose_W.position = com.position - com.rotation * in_->com_B;
+  state_.velocity_W = v_com + w.cross(state_.pose_W.position - com.position);
+  state_.angular_velocity_W = w;
+  state_.forward_speed_mps = state_.velocity_W.dot(com.rotation * Vec3::UnitX());
+  state_.rpy = ToRpy(com.rotation);
+  state_.gear = in_->powertrain.gear;
+  state_.engine_speed_radps = in_->powertrain.engine_speed_radps;
+  state_.engine_torque_nm = in_->powertrain.engine_torque_nm;
+  for (size_t i = 0; i < in_->corners.size(); ++i) {
+    const Internals::Corner& c = in_->corners[i];
+    WheelState& ws = state_.wheels[i];
+    ws.spin_radps = world_->JointVelocity(body_, c.wheel_link);
+    ws.suspension_travel_m = world_->JointPosition(body_, c.carrier_link);
+    ws.center_W = world_->LinkPose(body_, c.wheel_link).position;
+  }
+}
+
+}  // namespace vb::vehicles
