@@ -1,0 +1,267 @@
+// Tests for tools/io/vehicle_io.cc: the struct-shaped schema, its validation rules, and the
+// vehicle list of a data directory.
+#include "io/vehicle_io.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "vb/engine/error.h"
+
+namespace vb::io {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Every field of VehicleParams, once. Line numbers matter for the error tests.
+constexpr char kTinyVehicle[] = R"(name: tiny
+chassis:
+  mass_kg: 2000.0
+  inertia_kgm2: [500.0, 1500.0, 1800.0]
+  com_B: [0.1, 0.0, 0.3]
+  collision_box_center_B: [0.0, 0.0, 0.5]
+  collision_box_size_m: [4.0, 2.0, 1.2]
+axles:
+  - x_m: 1.6
+    half_track_m: 0.9
+    z_m: 0.0
+    steered: true
+    driven: true
+    brake_torque_nm: 2000.0
+    suspension:
+      stiffness_npm: 150000.0
+      damping_nspm: 12000.0
+      preload_n: 5000.0
+      bump_travel_m: 0.12
+      rebound_travel_m: 0.1
+      carrier_mass_kg: 40.0
+      carrier_inertia_kgm2: [0.5, 0.6, 0.5]
+  - x_m: -1.6
+    half_track_m: 0.9
+    z_m: 0.0
+    steered: false
+    driven: false
+    brake_torque_nm: 1500.0
+    suspension:
+      stiffness_npm: 160000.0
+      damping_nspm: 13000.0
+      preload_n: 5000.0
+      bump_travel_m: 0.12
+      rebound_travel_m: 0.1
+      carrier_mass_kg: 40.0
+      carrier_inertia_kgm2: [0.5, 0.6, 0.5]
+steering:
+  max_angle_rad: 0.55
+  ackermann: true
+wheel:
+  radius_m: 0.47
+  width_m: 0.32
+  mass_kg: 60.0
+  inertia_kgm2: [4.0, 7.0, 4.0]
+tire:
+  friction: 0.9
+  normal_stiffness_npm: 400000.0
+  normal_damping_nspm: 3000.0
+  bristle_stiffness_npm: 200000.0
+  bristle_damping_nspm: 2000.0
+engine:
+  max_speed_radps: 400.0
+  map:
+    - {speed_radps: 0.0, full_throttle_nm: 300.0, zero_throttle_nm: 0.0}
+    - {speed_radps: 200.0, full_throttle_nm: 500.0, zero_throttle_nm: -20.0}
+    - {speed_radps: 400.0, full_throttle_nm: 400.0, zero_throttle_nm: -50.0}
+transmission:
+  forward_ratios: [0.2, 0.4, 0.7]
+  reverse_ratio: 0.15
+  upshift_rpm: [2500.0, 2500.0, 4000.0]
+  downshift_rpm: [0.0, 1200.0, 1200.0]
+driveline:
+  conical_ratio: 0.2
+  lock_axle_differentials: false
+  lock_central_differential: true
+  lock_torque_limit_nm: 1000.0
+)";
+
+class VehicleIoTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = (fs::path(::testing::TempDir()) /
+            ("vb_vehicle_io_" + std::string(info->name()) + "_" + std::to_string(getpid())))
+               .string();
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string WriteText(const std::string& name, const std::string& text) const {
+    const std::string path = (fs::path(dir_) / name).string();
+    std::ofstream(path, std::ios::binary) << text;
+    return path;
+  }
+
+  // kTinyVehicle with line `line` (1-based) replaced by `replace`.
+  static std::string EditLine(int line, const std::string& replace) {
+    return Rewrite(line, line, replace);
+  }
+  // kTinyVehicle without lines first..last (1-based, inclusive).
+  static std::string DeleteLines(int first, int last) { return Rewrite(first, last, ""); }
+
+  static std::string Rewrite(int first, int last, const std::string& replace) {
+    std::istringstream in(kTinyVehicle);
+    std::string out, text;
+    for (int n = 1; std::getline(in, text); ++n) {
+      if (n < first || n > last) {
+        out += text + "\n";
+      } else if (n == first && !replace.empty()) {
+        out += replace + "\n";
+      }
+    }
+    return out;
+  }
+
+  void ExpectError(const std::string& text, int line, const std::string& key,
+                   const std::string& what) {
+    const std::string file = WriteText("vehicle.yaml", text);
+    try {
+      LoadVehicle(file);
+      ADD_FAILURE() << "no error; expected one at line " << line << " key " << key;
+    } catch (const InputError& e) {
+      const std::string msg = e.what();
+      EXPECT_EQ(e.file(), file);
+      EXPECT_EQ(e.line(), line) << msg;
+      EXPECT_EQ(e.key(), key) << msg;
+      EXPECT_NE(msg.find(file + ":" + std::to_string(line) + ":"), std::string::npos) << msg;
+      if (!key.empty()) {
+        EXPECT_NE(msg.find("key '" + key + "'"), std::string::npos) << msg;
+      }
+      EXPECT_NE(msg.find(what), std::string::npos) << msg;
+    }
+  }
+
+  std::string dir_;
+};
+
+TEST_F(VehicleIoTest, LoadsEveryField) {
+  const vehicles::VehicleParams v = LoadVehicle(WriteText("tiny.yaml", kTinyVehicle));
+  EXPECT_EQ(v.name, "tiny");
+  EXPECT_EQ(v.chassis.mass_kg, 2000.0);
+  EXPECT_EQ(v.chassis.inertia_kgm2, Vec3(500.0, 1500.0, 1800.0));
+  EXPECT_EQ(v.chassis.com_B, Vec3(0.1, 0.0, 0.3));
+  EXPECT_EQ(v.chassis.collision_box_center_B, Vec3(0.0, 0.0, 0.5));
+  EXPECT_EQ(v.chassis.collision_box_size_m, Vec3(4.0, 2.0, 1.2));
+  ASSERT_EQ(v.axles.size(), 2u);
+  EXPECT_EQ(v.axles[0].x_m, 1.6);
+  EXPECT_EQ(v.axles[0].half_track_m, 0.9);
+  EXPECT_TRUE(v.axles[0].steered);
+  EXPECT_FALSE(v.axles[1].steered);
+  EXPECT_TRUE(v.axles[0].driven);
+  EXPECT_FALSE(v.axles[1].driven);
+  EXPECT_EQ(v.axles[1].brake_torque_nm, 1500.0);
+  EXPECT_EQ(v.axles[1].suspension.stiffness_npm, 160000.0);
+  EXPECT_EQ(v.axles[0].suspension.damping_nspm, 12000.0);
+  EXPECT_EQ(v.axles[0].suspension.preload_n, 5000.0);
+  EXPECT_EQ(v.axles[0].suspension.bump_travel_m, 0.12);
+  EXPECT_EQ(v.axles[0].suspension.rebound_travel_m, 0.1);
+  EXPECT_EQ(v.axles[0].suspension.carrier_mass_kg, 40.0);
+  EXPECT_EQ(v.axles[0].suspension.carrier_inertia_kgm2, Vec3(0.5, 0.6, 0.5));
+  EXPECT_EQ(v.steering.max_angle_rad, 0.55);
+  EXPECT_TRUE(v.steering.ackermann);
+  EXPECT_EQ(v.wheel.radius_m, 0.47);
+  EXPECT_EQ(v.wheel.width_m, 0.32);
+  EXPECT_EQ(v.wheel.mass_kg, 60.0);
+  EXPECT_EQ(v.wheel.inertia_kgm2, Vec3(4.0, 7.0, 4.0));
+  EXPECT_EQ(v.tire.friction, 0.9);
+  EXPECT_EQ(v.tire.normal_stiffness_npm, 400000.0);
+  EXPECT_EQ(v.tire.normal_damping_nspm, 3000.0);
+  EXPECT_EQ(v.tire.bristle_stiffness_npm, 200000.0);
+  EXPECT_EQ(v.tire.bristle_damping_nspm, 2000.0);
+  EXPECT_EQ(v.engine.max_speed_radps, 400.0);
+  ASSERT_EQ(v.engine.map.size(), 3u);
+  EXPECT_EQ(v.engine.map[1].speed_radps, 200.0);
+  EXPECT_EQ(v.engine.map[1].full_throttle_nm, 500.0);
+  EXPECT_EQ(v.engine.map[2].zero_throttle_nm, -50.0);
+  EXPECT_EQ(v.transmission.forward_ratios, (std::vector<double>{0.2, 0.4, 0.7}));
+  EXPECT_EQ(v.transmission.reverse_ratio, 0.15);
+  EXPECT_EQ(v.transmission.upshift_rpm, (std::vector<double>{2500.0, 2500.0, 4000.0}));
+  EXPECT_EQ(v.transmission.downshift_rpm, (std::vector<double>{0.0, 1200.0, 1200.0}));
+  EXPECT_EQ(v.driveline.conical_ratio, 0.2);
+  EXPECT_FALSE(v.driveline.lock_axle_differentials);
+  EXPECT_TRUE(v.driveline.lock_central_differential);
+  EXPECT_EQ(v.driveline.lock_torque_limit_nm, 1000.0);
+}
+
+TEST_F(VehicleIoTest, ErrorUnknownKey) {
+  ExpectError(EditLine(31, "      stifness_npm: 160000.0"), 31, "axles[1].suspension.stifness_npm",
+              "unknown key 'stifness_npm'");
+}
+
+TEST_F(VehicleIoTest, ErrorMissingKey) {
+  ExpectError(DeleteLines(39, 39), 37, "steering.ackermann", "missing required key 'ackermann'");
+}
+
+TEST_F(VehicleIoTest, ErrorWrongType) {
+  ExpectError(EditLine(12, "    steered: yes"), 12, "axles[0].steered", "expected true or false");
+  ExpectError(EditLine(4, "  inertia_kgm2: [500.0, 1500.0]"), 4, "chassis.inertia_kgm2",
+              "exactly 3 items");
+  ExpectError(EditLine(1, "name: [tiny]"), 1, "name", "expected a string");
+}
+
+TEST_F(VehicleIoTest, ErrorOutOfRange) {
+  ExpectError(EditLine(3, "  mass_kg: -2000.0"), 3, "chassis.mass_kg", "must be > 0");
+  ExpectError(EditLine(17, "      damping_nspm: -1.0"), 17, "axles[0].suspension.damping_nspm",
+              "must be >= 0");
+  ExpectError(EditLine(41, "  radius_m: 0.0"), 41, "wheel.radius_m", "must be > 0");
+  ExpectError(EditLine(38, "  max_angle_rad: 1.6"), 38, "steering.max_angle_rad", "below pi/2");
+  ExpectError(EditLine(58, "  forward_ratios: [0.2, 0.0, 0.7]"), 58,
+              "transmission.forward_ratios[1]", "must be > 0");
+}
+
+TEST_F(VehicleIoTest, ErrorEngineMap) {
+  const std::string slower = "    - {speed_radps: 150.0, full_throttle_nm: 1, zero_throttle_nm: 0}";
+  ExpectError(EditLine(56, slower), 56, "engine.map[2].speed_radps", "strictly ascending");
+  ExpectError(DeleteLines(55, 56), 53, "engine.map", "at least 2 items");
+}
+
+TEST_F(VehicleIoTest, ErrorShiftListLength) {
+  ExpectError(EditLine(60, "  upshift_rpm: [2500.0, 2500.0]"), 60, "transmission.upshift_rpm",
+              "exactly 3 items");
+}
+
+TEST_F(VehicleIoTest, ErrorAxles) {
+  ExpectError(DeleteLines(23, 36), 8, "axles", "at least 2 items");
+  ExpectError(EditLine(23, "  - x_m: 1.7"), 23, "axles[1]", "front to rear");
+  ExpectError(EditLine(13, "    driven: false"), 8, "axles", "at least one axle must be driven");
+}
+
+TEST_F(VehicleIoTest, ErrorYamlSyntax) {
+  ExpectError(EditLine(5, "  com_B: [0.1, 0.0, 0.3]]"), 5, "", "YAML syntax error");
+}
+
+TEST_F(VehicleIoTest, VehicleNames) {
+  EXPECT_TRUE(VehicleNames((fs::path(dir_) / "nothing").string()).empty());
+  fs::create_directories(fs::path(dir_) / "vehicles");
+  WriteText("vehicles/zeta.yaml", kTinyVehicle);
+  WriteText("vehicles/hmmwv.yaml", kTinyVehicle);
+  WriteText("vehicles/notes.txt", "not a vehicle");
+  EXPECT_EQ(VehicleNames(dir_), (std::vector<std::string>{"hmmwv", "zeta"}));
+}
+
+TEST_F(VehicleIoTest, LoadsShippedHmmwv) {
+  const std::string path = VB_SOURCE_DIR "/data/vehicles/hmmwv.yaml";
+  if (!fs::exists(path)) GTEST_SKIP() << path << " not present yet";
+  const vehicles::VehicleParams v = LoadVehicle(path);
+  EXPECT_EQ(v.name, "hmmwv");
+  EXPECT_GE(v.axles.size(), 2u);
+  const std::vector<std::string> names = VehicleNames(VB_SOURCE_DIR "/data");
+  EXPECT_NE(std::find(names.begin(), names.end(), "hmmwv"), names.end());
+}
+
+}  // namespace
+}  // namespace vb::io

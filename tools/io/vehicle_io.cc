@@ -1,0 +1,206 @@
+#include "io/vehicle_io.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "io/yaml_strict.h"
+#include "vb/engine/error.h"
+
+namespace vb::io {
+namespace {
+
+using vehicles::AxleParams;
+using vehicles::VehicleParams;
+
+// The YAML schema is the struct: keys are exactly the field names of vehicle_params.h, with the
+// same nesting, and every field is required so a file always states the whole vehicle.
+
+vehicles::ChassisParams ReadChassis(const StrictNode& node) {
+  const StrictMap m = node.AsMap(
+      {"mass_kg", "inertia_kgm2", "com_B", "collision_box_center_B", "collision_box_size_m"});
+  vehicles::ChassisParams p;
+  p.mass_kg = m.Required("mass_kg").AsPositive();
+  p.inertia_kgm2 = m.Required("inertia_kgm2").AsPositiveVec3();
+  p.com_B = m.Required("com_B").AsVec3();
+  p.collision_box_center_B = m.Required("collision_box_center_B").AsVec3();
+  p.collision_box_size_m = m.Required("collision_box_size_m").AsPositiveVec3();
+  return p;
+}
+
+vehicles::SuspensionParams ReadSuspension(const StrictNode& node) {
+  const StrictMap m =
+      node.AsMap({"stiffness_npm", "damping_nspm", "preload_n", "bump_travel_m",
+                  "rebound_travel_m", "carrier_mass_kg", "carrier_inertia_kgm2"});
+  vehicles::SuspensionParams p;
+  p.stiffness_npm = m.Required("stiffness_npm").AsPositive();
+  p.damping_nspm = m.Required("damping_nspm").AsNonNegative();
+  p.preload_n = m.Required("preload_n").AsNonNegative();
+  p.bump_travel_m = m.Required("bump_travel_m").AsNonNegative();
+  p.rebound_travel_m = m.Required("rebound_travel_m").AsNonNegative();
+  p.carrier_mass_kg = m.Required("carrier_mass_kg").AsPositive();
+  p.carrier_inertia_kgm2 = m.Required("carrier_inertia_kgm2").AsPositiveVec3();
+  return p;
+}
+
+AxleParams ReadAxle(const StrictNode& node) {
+  const StrictMap m = node.AsMap(
+      {"x_m", "half_track_m", "z_m", "steered", "driven", "brake_torque_nm", "suspension"});
+  AxleParams p;
+  p.x_m = m.Required("x_m").AsDouble();
+  p.half_track_m = m.Required("half_track_m").AsPositive();
+  p.z_m = m.Required("z_m").AsDouble();
+  p.steered = m.Required("steered").AsBool();
+  p.driven = m.Required("driven").AsBool();
+  p.brake_torque_nm = m.Required("brake_torque_nm").AsNonNegative();
+  p.suspension = ReadSuspension(m.Required("suspension"));
+  return p;
+}
+
+std::vector<AxleParams> ReadAxles(const StrictNode& node) {
+  std::vector<AxleParams> axles;
+  bool any_driven = false;
+  for (const StrictNode& item : node.AsList(2)) {
+    axles.push_back(ReadAxle(item));
+    // Front to rear: the builder and the driveline rely on this order (front axle first).
+    if (axles.size() > 1 && !(axles.back().x_m < axles[axles.size() - 2].x_m)) {
+      item.Fail("axles must be listed front to rear (x_m strictly decreasing), got x_m " +
+                FormatDouble(axles.back().x_m) + " after " +
+                FormatDouble(axles[axles.size() - 2].x_m));
+    }
+    any_driven = any_driven || axles.back().driven;
+  }
+  if (!any_driven) node.Fail("at least one axle must be driven");
+  return axles;
+}
+
+vehicles::SteeringParams ReadSteering(const StrictNode& node) {
+  const StrictMap m = node.AsMap({"max_angle_rad", "ackermann"});
+  vehicles::SteeringParams p;
+  const StrictNode angle = m.Required("max_angle_rad");
+  p.max_angle_rad = angle.AsPositive();
+  // Ackermann geometry and the kinematics break down at a right angle.
+  if (!(p.max_angle_rad < 0.5 * M_PI)) {
+    angle.Fail("must be below pi/2, got " + FormatDouble(p.max_angle_rad));
+  }
+  p.ackermann = m.Required("ackermann").AsBool();
+  return p;
+}
+
+vehicles::WheelParams ReadWheel(const StrictNode& node) {
+  const StrictMap m = node.AsMap({"radius_m", "width_m", "mass_kg", "inertia_kgm2"});
+  vehicles::WheelParams p;
+  p.radius_m = m.Required("radius_m").AsPositive();
+  p.width_m = m.Required("width_m").AsPositive();
+  p.mass_kg = m.Required("mass_kg").AsPositive();
+  p.inertia_kgm2 = m.Required("inertia_kgm2").AsPositiveVec3();
+  return p;
+}
+
+vehicles::TireParams ReadTire(const StrictNode& node) {
+  const StrictMap m = node.AsMap({"friction", "normal_stiffness_npm", "normal_damping_nspm",
+                                  "bristle_stiffness_npm", "bristle_damping_nspm"});
+  vehicles::TireParams p;
+  p.friction = m.Required("friction").AsPositive();
+  p.normal_stiffness_npm = m.Required("normal_stiffness_npm").AsPositive();
+  p.normal_damping_nspm = m.Required("normal_damping_nspm").AsNonNegative();
+  p.bristle_stiffness_npm = m.Required("bristle_stiffness_npm").AsPositive();
+  p.bristle_damping_nspm = m.Required("bristle_damping_nspm").AsNonNegative();
+  return p;
+}
+
+vehicles::EngineParams ReadEngine(const StrictNode& node) {
+  const StrictMap m = node.AsMap({"max_speed_radps", "map"});
+  vehicles::EngineParams p;
+  p.max_speed_radps = m.Required("max_speed_radps").AsPositive();
+  // Linear interpolation needs two points and strictly ascending speeds.
+  for (const StrictNode& item : m.Required("map").AsList(2)) {
+    const StrictMap point = item.AsMap({"speed_radps", "full_throttle_nm", "zero_throttle_nm"});
+    vehicles::EngineMapPoint q;
+    const StrictNode speed = point.Required("speed_radps");
+    q.speed_radps = speed.AsNonNegative();
+    if (!p.map.empty() && !(q.speed_radps > p.map.back().speed_radps)) {
+      speed.Fail("engine map speeds must be strictly ascending, got " +
+                 FormatDouble(q.speed_radps) + " after " + FormatDouble(p.map.back().speed_radps));
+    }
+    q.full_throttle_nm = point.Required("full_throttle_nm").AsDouble();
+    q.zero_throttle_nm = point.Required("zero_throttle_nm").AsDouble();
+    p.map.push_back(q);
+  }
+  return p;
+}
+
+std::vector<double> ReadPositiveList(const StrictNode& node, size_t min_size) {
+  std::vector<double> values;
+  for (const StrictNode& item : node.AsList(min_size)) values.push_back(item.AsPositive());
+  return values;
+}
+
+std::vector<double> ReadShiftList(const StrictNode& node, size_t gears) {
+  std::vector<double> values;
+  for (const StrictNode& item : node.AsList(gears, gears)) values.push_back(item.AsNonNegative());
+  return values;
+}
+
+vehicles::TransmissionParams ReadTransmission(const StrictNode& node) {
+  const StrictMap m =
+      node.AsMap({"forward_ratios", "reverse_ratio", "upshift_rpm", "downshift_rpm"});
+  vehicles::TransmissionParams p;
+  p.forward_ratios = ReadPositiveList(m.Required("forward_ratios"), 1);
+  // A magnitude: the reverse gear itself flips the direction.
+  p.reverse_ratio = m.Required("reverse_ratio").AsPositive();
+  p.upshift_rpm = ReadShiftList(m.Required("upshift_rpm"), p.forward_ratios.size());
+  p.downshift_rpm = ReadShiftList(m.Required("downshift_rpm"), p.forward_ratios.size());
+  return p;
+}
+
+vehicles::DrivelineParams ReadDriveline(const StrictNode& node) {
+  const StrictMap m = node.AsMap({"conical_ratio", "lock_axle_differentials",
+                                  "lock_central_differential", "lock_torque_limit_nm"});
+  vehicles::DrivelineParams p;
+  p.conical_ratio = m.Required("conical_ratio").AsPositive();
+  p.lock_axle_differentials = m.Required("lock_axle_differentials").AsBool();
+  p.lock_central_differential = m.Required("lock_central_differential").AsBool();
+  p.lock_torque_limit_nm = m.Required("lock_torque_limit_nm").AsNonNegative();
+  return p;
+}
+
+}  // namespace
+
+vehicles::VehicleParams LoadVehicle(const std::string& path) {
+  const StrictNode root = LoadYamlFile(path);
+  const StrictMap top = root.AsMap({"name", "chassis", "axles", "steering", "wheel", "tire",
+                                    "engine", "transmission", "driveline"});
+  VehicleParams v;
+  const StrictNode name = top.Required("name");
+  v.name = name.AsString();
+  if (v.name.empty()) name.Fail("name is empty");
+  v.chassis = ReadChassis(top.Required("chassis"));
+  v.axles = ReadAxles(top.Required("axles"));
+  v.steering = ReadSteering(top.Required("steering"));
+  v.wheel = ReadWheel(top.Required("wheel"));
+  v.tire = ReadTire(top.Required("tire"));
+  v.engine = ReadEngine(top.Required("engine"));
+  v.transmission = ReadTransmission(top.Required("transmission"));
+  v.driveline = ReadDriveline(top.Required("driveline"));
+  return v;
+}
+
+std::vector<std::string> VehicleNames(const std::string& data_dir) {
+  namespace fs = std::filesystem;
+  // A missing directory simply has no vehicles; callers report "unknown vehicle" with the list.
+  std::vector<std::string> names;
+  std::error_code ec;
+  for (fs::directory_iterator it(fs::path(data_dir) / "vehicles", ec), end; !ec && it != end;
+       it.increment(ec)) {
+    if (it->path().extension() == ".yaml" && it->is_regular_file(ec)) {
+      names.push_back(it->path().stem().string());
+    }
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+}  // namespace vb::io
