@@ -1,0 +1,195 @@
+#include "vb/terrain/grid_planner.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <queue>
+
+#include "vb/engine/error.h"
+
+namespace vb::terrain {
+namespace {
+
+constexpr double kSqrt2 = 1.41421356237309504880;
+// Rock collision box side at scale 1 (RockBoxSize in terrain_physics.h), which sets the footprint.
+constexpr double kRockSideM = 4.4;
+
+// Octile distance: the exact cost of an obstacle-free 8-connected path with diagonal cost
+// sqrt(2), so the heuristic is admissible and consistent and A* returns an optimal path.
+inline double Octile(int dr, int dc) {
+  dr = std::abs(dr);
+  dc = std::abs(dc);
+  const int lo = std::min(dr, dc);
+  const int hi = std::max(dr, dc);
+  return (hi - lo) + kSqrt2 * lo;
+}
+
+struct OpenEntry {
+  double f;
+  double h;
+  int index;
+};
+
+// std::priority_queue pops the largest element; "larger" here means worse, so the best entry
+// (lowest f, then lowest h, then lowest row-major index) comes out first.
+struct WorseThan {
+  bool operator()(const OpenEntry& a, const OpenEntry& b) const {
+    if (a.f != b.f) return a.f > b.f;
+    if (a.h != b.h) return a.h > b.h;
+    return a.index > b.index;
+  }
+};
+
+void MarkSquare(OccupancyGrid* grid, const Cell& centre, int half) {
+  const int r0 = std::max(centre.row - half, 0);
+  const int r1 = std::min(centre.row + half, grid->rows - 1);
+  const int c0 = std::max(centre.col - half, 0);
+  const int c1 = std::min(centre.col + half, grid->cols - 1);
+  for (int r = r0; r <= r1; ++r) {
+    for (int c = c0; c <= c1; ++c) grid->occupied[static_cast<size_t>(r) * grid->cols + c] = 1;
+  }
+}
+
+}  // namespace
+
+Cell OccupancyGrid::CellOf(const Vec2& p_m) const {
+  // nearest cell centre; floor(v + 0.5) rounds halves the same way on every platform
+  const int c = static_cast<int>(std::floor((p_m.x() + 0.5 * size_x_m) / cell_m + 0.5));
+  const int r = static_cast<int>(std::floor((0.5 * size_y_m - p_m.y()) / cell_m + 0.5));
+  return {std::min(std::max(r, 0), rows - 1), std::min(std::max(c, 0), cols - 1)};
+}
+
+Vec2 OccupancyGrid::CenterOf(const Cell& cell) const {
+  return Vec2(-0.5 * size_x_m + cell.col * cell_m, 0.5 * size_y_m - cell.row * cell_m);
+}
+
+OccupancyGrid RasterizeObstacles(const TaskSpec& task) {
+  VB_DEMAND(task.heights.rows >= 2 && task.heights.cols >= 2);
+  OccupancyGrid grid;
+  grid.rows = task.heights.rows;
+  grid.cols = task.heights.cols;
+  grid.cell_m = task.size_x_m / (task.heights.cols - 1);
+  grid.size_x_m = task.size_x_m;
+  grid.size_y_m = task.size_y_m;
+  grid.occupied.assign(static_cast<size_t>(grid.rows) * grid.cols, 0);
+  for (const RockSpec& rock : task.rocks) {
+    // side in cells truncated as the original (3, 4, 5 at 1 m); the square [c - w/2, c + w/2]
+    // is then 3, 5, 5 cells wide
+    const int w = static_cast<int>(kRockSideM * rock.scale / grid.cell_m);
+    MarkSquare(&grid, grid.CellOf(Vec2(rock.x_m, rock.y_m)), w / 2);
+  }
+  for (const TreeSpec& tree : task.trees) {
+    MarkSquare(&grid, grid.CellOf(Vec2(tree.x_m, tree.y_m)), 0);
+  }
+  return grid;
+}
+
+OccupancyGrid Inflate(const OccupancyGrid& grid, int radius_cells) {
+  VB_DEMAND(radius_cells >= 0);
+  OccupancyGrid out = grid;
+  if (radius_cells == 0) return out;
+  // a square structuring element is separable: dilate along rows, then along columns
+  std::vector<uint8_t> rows_pass(grid.occupied.size(), 0);
+  for (int r = 0; r < grid.rows; ++r) {
+    for (int c = 0; c < grid.cols; ++c) {
+      if (!grid.Occupied(r, c)) continue;
+      const int c0 = std::max(c - radius_cells, 0);
+      const int c1 = std::min(c + radius_cells, grid.cols - 1);
+      for (int k = c0; k <= c1; ++k) rows_pass[static_cast<size_t>(r) * grid.cols + k] = 1;
+    }
+  }
+  std::fill(out.occupied.begin(), out.occupied.end(), 0);
+  for (int r = 0; r < grid.rows; ++r) {
+    for (int c = 0; c < grid.cols; ++c) {
+      if (!rows_pass[static_cast<size_t>(r) * grid.cols + c]) continue;
+      const int r0 = std::max(r - radius_cells, 0);
+      const int r1 = std::min(r + radius_cells, grid.rows - 1);
+      for (int k = r0; k <= r1; ++k) out.occupied[static_cast<size_t>(k) * grid.cols + c] = 1;
+    }
+  }
+  return out;
+}
+
+std::optional<std::vector<Cell>> AStar(const OccupancyGrid& grid, const Cell& start,
+                                       const Cell& goal) {
+  VB_DEMAND(start.row >= 0 && start.row < grid.rows && start.col >= 0 && start.col < grid.cols);
+  VB_DEMAND(goal.row >= 0 && goal.row < grid.rows && goal.col >= 0 && goal.col < grid.cols);
+  if (start == goal) return std::vector<Cell>{start};
+  // the goal must be free (as the original): a path ending inside an obstacle is no path
+  if (grid.Occupied(goal.row, goal.col)) return std::nullopt;
+
+  const int n = grid.rows * grid.cols;
+  const int start_index = start.row * grid.cols + start.col;
+  const int goal_index = goal.row * grid.cols + goal.col;
+  std::vector<double> g(static_cast<size_t>(n), std::numeric_limits<double>::infinity());
+  std::vector<int> parent(static_cast<size_t>(n), -1);
+  std::vector<uint8_t> closed(static_cast<size_t>(n), 0);
+  std::priority_queue<OpenEntry, std::vector<OpenEntry>, WorseThan> open;
+
+  const double h_start = Octile(goal.row - start.row, goal.col - start.col);
+  g[start_index] = 0.0;
+  open.push({h_start, h_start, start_index});
+  constexpr int kDr[8] = {-1, -1, -1, 0, 0, 1, 1, 1};
+  constexpr int kDc[8] = {-1, 0, 1, -1, 1, -1, 0, 1};
+
+  while (!open.empty()) {
+    const OpenEntry top = open.top();
+    open.pop();
+    // lazy deletion: skip entries superseded by a cheaper push of the same cell
+    if (closed[top.index]) continue;
+    closed[top.index] = 1;
+    if (top.index == goal_index) break;
+    const int r = top.index / grid.cols;
+    const int c = top.index % grid.cols;
+    for (int k = 0; k < 8; ++k) {
+      const int nr = r + kDr[k];
+      const int nc = c + kDc[k];
+      if (nr < 0 || nr >= grid.rows || nc < 0 || nc >= grid.cols) continue;
+      if (grid.Occupied(nr, nc)) continue;
+      const int ni = nr * grid.cols + nc;
+      if (closed[ni]) continue;
+      const double step = (kDr[k] != 0 && kDc[k] != 0) ? kSqrt2 : 1.0;
+      const double ng = g[top.index] + step;
+      if (ng < g[ni]) {
+        g[ni] = ng;
+        parent[ni] = top.index;
+        const double h = Octile(goal.row - nr, goal.col - nc);
+        open.push({ng + h, h, ni});
+      }
+    }
+  }
+  if (!closed[goal_index]) return std::nullopt;
+
+  std::vector<Cell> path;
+  for (int i = goal_index; i != -1; i = parent[i]) path.push_back({i / grid.cols, i % grid.cols});
+  std::reverse(path.begin(), path.end());
+  return path;
+}
+
+std::optional<std::vector<Vec2>> PlanPath(const OccupancyGrid& inflated, const Vec2& start_m,
+                                          const Vec2& goal_m) {
+  const auto cells = AStar(inflated, inflated.CellOf(start_m), inflated.CellOf(goal_m));
+  if (!cells) return std::nullopt;
+  std::vector<Vec2> path_m;
+  path_m.reserve(cells->size());
+  for (const Cell& cell : *cells) path_m.push_back(inflated.CenterOf(cell));
+  return path_m;
+}
+
+Vec2 LookAheadPoint(const std::vector<Vec2>& path_m, const Vec2& position_m, double yaw_rad,
+                    double lookahead_m, size_t* index) {
+  VB_DEMAND(!path_m.empty());
+  const Vec2 heading(std::cos(yaw_rad), std::sin(yaw_rad));
+  for (size_t i = *index; i < path_m.size(); ++i) {
+    const Vec2 d = path_m[i] - position_m;
+    // bearing within +-90 deg of the heading <=> non-negative projection on the heading
+    if (d.norm() >= lookahead_m && d.dot(heading) >= 0.0) {
+      *index = i;
+      return path_m[i];
+    }
+  }
+  *index = path_m.size() - 1;
+  return path_m.back();
+}
+
+}  // namespace vb::terrain

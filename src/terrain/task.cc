@@ -1,0 +1,32 @@
+#include "vb/terrain/task.h"
+
+namespace vb::terrain {
+
+std::string_view ElevationLevelName(ElevationLevel v) {
+  switch (v) {
+    case ElevationLevel::kLow: return "low";
+    case ElevationLevel::kMid: return "mid";
+    case ElevationLevel::kHigh: return "high";
+  }
+  return "unknown";
+}
+
+std::string_view TerrainTypeName(TerrainType v) {
+  switch (v) {
+    case TerrainType::kRigid: return "rigid";
+    case TerrainType::kDeformable: return "deformable";
+    case TerrainType::kMixed: return "mixed";
+  }
+  return "unknown";
+}
+
+std::string_view ObstacleDensityName(ObstacleDensity v) {
+  switch (v) {
+    case ObstacleDensity::kSparse: return "sparse";
+    case ObstacleDensity::kMedium: return "medium";
+    case ObstacleDensity::kDense: return "dense";
+  }
+  return "unknown";
+}
+
+}  // namespace vb::terrain

@@ -1,0 +1,139 @@
+#include "vb/terrain/terrain.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "vb/engine/error.h"
+
+namespace vb::terrain {
+namespace {
+
+// Position of (x, y) in grid coordinates: the cell (row r, col c) whose NW vertex is (r, c), and
+// the fractional offsets fu (east, along columns) and fv (south, along rows), both in [0, 1].
+struct CellCoords {
+  int r;
+  int c;
+  double fu;
+  double fv;
+};
+
+inline CellCoords Locate(const HeightGrid& g, double half_x, double half_y, double dx, double dy,
+                         double x_m, double y_m) {
+  // clamp to the grid first, so points outside read the border (continuous extension)
+  const double u = std::min(std::max((x_m + half_x) / dx, 0.0), static_cast<double>(g.cols - 1));
+  const double v = std::min(std::max((half_y - y_m) / dy, 0.0), static_cast<double>(g.rows - 1));
+  // the last row/column belongs to the cell before it (fu or fv = 1 there)
+  const int c = std::min(static_cast<int>(u), g.cols - 2);
+  const int r = std::min(static_cast<int>(v), g.rows - 2);
+  return {r, c, u - c, v - r};
+}
+
+// Height and grid-coordinate gradient of the triangle containing the point. The SW-NE diagonal
+// is fu + fv = 1: below it (fu + fv <= 1) lies triangle (SW, NE, NW), above it (SW, SE, NE).
+// Each branch is the exact plane through its three vertices, so both agree on the diagonal.
+inline double PlaneHeight(const HeightGrid& g, const CellCoords& p, double* dh_du, double* dh_dv) {
+  const double* row0 = &g.heights_m[static_cast<size_t>(p.r) * g.cols + p.c];
+  const double* row1 = row0 + g.cols;
+  const double h_nw = row0[0];
+  const double h_ne = row0[1];
+  const double h_sw = row1[0];
+  const double h_se = row1[1];
+  if (p.fu + p.fv <= 1.0) {
+    *dh_du = h_ne - h_nw;
+    *dh_dv = h_sw - h_nw;
+    return h_nw + p.fu * (*dh_du) + p.fv * (*dh_dv);
+  }
+  *dh_du = h_se - h_sw;
+  *dh_dv = h_se - h_ne;
+  return h_se - (1.0 - p.fu) * (*dh_du) - (1.0 - p.fv) * (*dh_dv);
+}
+
+// Upward unit normal from the grid-coordinate gradient; v grows southward (-y), hence the sign.
+inline Vec3 NormalFromGradient(double dh_du, double dh_dv, double dx, double dy) {
+  const double gx = dh_du / dx;
+  const double gy = -dh_dv / dy;
+  const double inv_norm = 1.0 / std::sqrt(gx * gx + gy * gy + 1.0);
+  return Vec3(-gx * inv_norm, -gy * inv_norm, inv_norm);
+}
+
+}  // namespace
+
+Terrain::Terrain(const TaskSpec& task)
+    : grid_(task.heights),
+      patches_(task.patches),
+      size_x_m_(task.size_x_m),
+      size_y_m_(task.size_y_m) {
+  VB_DEMAND(grid_.rows >= 2 && grid_.cols >= 2);
+  VB_DEMAND(grid_.heights_m.size() == static_cast<size_t>(grid_.rows) * grid_.cols);
+  VB_DEMAND(size_x_m_ > 0.0 && size_y_m_ > 0.0);
+  VB_DEMAND(patches_.classes.size() == static_cast<size_t>(patches_.rows) * patches_.cols);
+  VB_DEMAND(patches_.friction.size() == patches_.classes.size());
+  dx_ = size_x_m_ / (grid_.cols - 1);
+  dy_ = size_y_m_ / (grid_.rows - 1);
+}
+
+double Terrain::Height(double x_m, double y_m) const {
+  double dh_du, dh_dv;
+  return PlaneHeight(grid_, Locate(grid_, 0.5 * size_x_m_, 0.5 * size_y_m_, dx_, dy_, x_m, y_m),
+                     &dh_du, &dh_dv);
+}
+
+Vec3 Terrain::Normal(double x_m, double y_m) const {
+  double dh_du, dh_dv;
+  PlaneHeight(grid_, Locate(grid_, 0.5 * size_x_m_, 0.5 * size_y_m_, dx_, dy_, x_m, y_m), &dh_du,
+              &dh_dv);
+  return NormalFromGradient(dh_du, dh_dv, dx_, dy_);
+}
+
+void Terrain::PatchIndex(double x_m, double y_m, int* row, int* col) const {
+  // patch (i, j) covers x in [-sx/2 + j*sx/cols, -sx/2 + (j+1)*sx/cols), y likewise from the north
+  const int j = static_cast<int>(std::floor((x_m + 0.5 * size_x_m_) * patches_.cols / size_x_m_));
+  const int i = static_cast<int>(std::floor((0.5 * size_y_m_ - y_m) * patches_.rows / size_y_m_));
+  *col = std::min(std::max(j, 0), patches_.cols - 1);
+  *row = std::min(std::max(i, 0), patches_.rows - 1);
+}
+
+SurfacePoint Terrain::Query(double x_m, double y_m) const {
+  SurfacePoint out;
+  double dh_du, dh_dv;
+  out.height_m = PlaneHeight(
+      grid_, Locate(grid_, 0.5 * size_x_m_, 0.5 * size_y_m_, dx_, dy_, x_m, y_m), &dh_du, &dh_dv);
+  out.normal_W = NormalFromGradient(dh_du, dh_dv, dx_, dy_);
+  // a task without semantics (unit tests, bare height fields) keeps the SurfacePoint defaults
+  if (patches_.rows > 0 && patches_.cols > 0) {
+    int i, j;
+    PatchIndex(x_m, y_m, &i, &j);
+    const size_t k = static_cast<size_t>(i) * patches_.cols + j;
+    out.surface = patches_.classes[k];
+    out.friction = patches_.friction[k];
+  }
+  return out;
+}
+
+void Terrain::Mesh(std::vector<Vec3>* vertices_W, std::vector<int>* triangles) const {
+  const int rows = grid_.rows;
+  const int cols = grid_.cols;
+  vertices_W->clear();
+  vertices_W->reserve(static_cast<size_t>(rows) * cols);
+  // vertices in the grid's row-major order, at the same coordinates the queries use
+  for (int r = 0; r < rows; ++r) {
+    for (int c = 0; c < cols; ++c) {
+      vertices_W->emplace_back(-0.5 * size_x_m_ + c * dx_, 0.5 * size_y_m_ - r * dy_,
+                               grid_.At(r, c));
+    }
+  }
+  triangles->clear();
+  triangles->reserve(static_cast<size_t>(rows - 1) * (cols - 1) * 6);
+  // two triangles per cell split along SW-NE, both counter-clockwise seen from above
+  for (int r = 0; r + 1 < rows; ++r) {
+    for (int c = 0; c + 1 < cols; ++c) {
+      const int nw = r * cols + c;
+      const int ne = nw + 1;
+      const int sw = nw + cols;
+      const int se = sw + 1;
+      triangles->insert(triangles->end(), {sw, se, ne, sw, ne, nw});
+    }
+  }
+}
+
+}  // namespace vb::terrain

@@ -1,0 +1,179 @@
+// vb_gen: generates one benchmark environment (task file + 16-bit height image) from a seed.
+#include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+#include "io/task_io.h"
+#include "vb/engine/error.h"
+#include "vb/terrain/generator.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using vb::terrain::ElevationLevel;
+using vb::terrain::ObstacleDensity;
+using vb::terrain::TerrainType;
+
+constexpr const char* kUsage = R"(usage: vb_gen --seed S --name NAME --elevation LEVEL
+              --terrain TYPE --density DENSITY --out TASKDIR [--image-dir IMGDIR]
+
+Generates one environment of the benchmark with the first-version generator (vb_gen v0): a
+rugged 129 x 129 height field at 1 m (128 m x 128 m world), 16 x 16 semantics patches, rocks and
+trees placed with the original benchmark's rules, and the 10 start/goal pairs on the 60 m
+circle, each with a global path on the obstacle grid inflated by 4 cells. The same arguments
+always produce byte-identical files.
+
+  --seed S           generator seed, an unsigned 64-bit integer (required)
+  --name NAME        environment name, e.g. env042; file stem of the outputs (required)
+  --elevation LEVEL  low | mid | high (required)
+  --terrain TYPE     rigid | deformable | mixed (required)
+  --density DENSITY  sparse | medium | dense: 10/20/40 rocks and 1/2/3 trees (required)
+  --out TASKDIR      directory of the task file TASKDIR/NAME.yaml (required; created if missing)
+  --image-dir IMGDIR directory of the height image IMGDIR/NAME.png (default: TASKDIR/../data/
+                     worlds); the task file refers to it by a path relative to TASKDIR
+  --help             this text
+
+Prints the elevation statistics of the generated world (as reference_verti_bench.md §9).
+Exit codes: 0 success, 2 bad arguments or unwritable output, 1 other errors.
+)";
+
+struct Options {
+  bool help = false;
+  bool have_seed = false;
+  bool have_name = false;
+  vb::terrain::GeneratorOptions gen;
+  bool have_elevation = false, have_terrain = false, have_density = false;
+  std::string out_dir;
+  std::string image_dir;
+};
+
+template <typename E, size_t N>
+E ParseChoice(const std::string& flag, const std::string& text, const E (&values)[N],
+              std::string_view (*name)(E)) {
+  std::string valid;
+  for (E v : values) {
+    if (name(v) == text) return v;
+    valid += (valid.empty() ? "" : " | ") + std::string(name(v));
+  }
+  throw vb::InputError("", 0, flag, "'" + text + "' is not one of " + valid);
+}
+
+Options ParseArgs(int argc, char** argv) {
+  Options o;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc) throw vb::InputError("", 0, a, "missing value");
+      return argv[++i];
+    };
+    if (a == "--help" || a == "-h") {
+      o.help = true;
+    } else if (a == "--seed") {
+      const std::string text = value();
+      char* end = nullptr;
+      errno = 0;
+      o.gen.seed = std::strtoull(text.c_str(), &end, 10);
+      if (text.empty() || *end != '\0' || errno != 0 || text[0] == '-') {
+        throw vb::InputError("", 0, a, "'" + text + "' is not an unsigned 64-bit integer");
+      }
+      o.have_seed = true;
+    } else if (a == "--name") {
+      o.gen.name = value();
+      if (o.gen.name.empty() || o.gen.name.find('/') != std::string::npos) {
+        throw vb::InputError("", 0, a, "must be a non-empty file stem without '/'");
+      }
+      o.have_name = true;
+    } else if (a == "--elevation") {
+      static constexpr ElevationLevel kAll[] = {ElevationLevel::kLow, ElevationLevel::kMid,
+                                                ElevationLevel::kHigh};
+      o.gen.elevation = ParseChoice(a, value(), kAll, vb::terrain::ElevationLevelName);
+      o.have_elevation = true;
+    } else if (a == "--terrain") {
+      static constexpr TerrainType kAll[] = {TerrainType::kRigid, TerrainType::kDeformable,
+                                             TerrainType::kMixed};
+      o.gen.terrain = ParseChoice(a, value(), kAll, vb::terrain::TerrainTypeName);
+      o.have_terrain = true;
+    } else if (a == "--density") {
+      static constexpr ObstacleDensity kAll[] = {ObstacleDensity::kSparse, ObstacleDensity::kMedium,
+                                                 ObstacleDensity::kDense};
+      o.gen.density = ParseChoice(a, value(), kAll, vb::terrain::ObstacleDensityName);
+      o.have_density = true;
+    } else if (a == "--out") {
+      o.out_dir = value();
+    } else if (a == "--image-dir") {
+      o.image_dir = value();
+    } else {
+      throw vb::InputError("", 0, a, "unknown argument (see --help)");
+    }
+  }
+  if (o.help) return o;
+  if (!o.have_seed) throw vb::InputError("", 0, "--seed", "required (see --help)");
+  if (!o.have_name) throw vb::InputError("", 0, "--name", "required (see --help)");
+  if (!o.have_elevation) throw vb::InputError("", 0, "--elevation", "required (see --help)");
+  if (!o.have_terrain) throw vb::InputError("", 0, "--terrain", "required (see --help)");
+  if (!o.have_density) throw vb::InputError("", 0, "--density", "required (see --help)");
+  if (o.out_dir.empty()) throw vb::InputError("", 0, "--out", "required (see --help)");
+  if (o.image_dir.empty()) o.image_dir = (fs::path(o.out_dir) / ".." / "data" / "worlds").string();
+  return o;
+}
+
+int Run(const Options& o) {
+  std::error_code ec;
+  fs::create_directories(o.out_dir, ec);
+  if (ec) throw vb::InputError(o.out_dir, 0, "--out", "cannot create directory: " + ec.message());
+  fs::create_directories(o.image_dir, ec);
+  if (ec) {
+    throw vb::InputError(o.image_dir, 0, "--image-dir", "cannot create directory: " + ec.message());
+  }
+
+  vb::terrain::TaskSpec task = vb::terrain::GenerateTask(o.gen);
+  const fs::path task_path = fs::path(o.out_dir) / (o.gen.name + ".yaml");
+  const fs::path image_path = fs::path(o.image_dir) / (o.gen.name + ".png");
+  // stored relative to the task file (and with '/' separators) so the tree can be moved as a whole
+  task.height_image = fs::weakly_canonical(image_path)
+                          .lexically_relative(fs::weakly_canonical(o.out_dir))
+                          .generic_string();
+  vb::io::WriteHeightImage(task.heights, task.min_height_m, task.max_height_m, image_path.string());
+  vb::io::SaveTask(task, task_path.string());
+
+  const vb::terrain::ElevationStats s = vb::terrain::ComputeElevationStats(
+      task.heights, task.size_x_m / (task.heights.cols - 1));
+  size_t path_points = 0;
+  for (const auto& pair : task.pairs) path_points += pair.path_m.size();
+  std::printf("%s: seed %llu, %s elevation, %s terrain, %s obstacles (%zu rocks, %zu trees)\n",
+              task.name.c_str(), static_cast<unsigned long long>(task.generator_seed),
+              std::string(vb::terrain::ElevationLevelName(task.labels.elevation)).c_str(),
+              std::string(vb::terrain::TerrainTypeName(task.labels.terrain)).c_str(),
+              std::string(vb::terrain::ObstacleDensityName(task.labels.density)).c_str(),
+              task.rocks.size(), task.trees.size());
+  std::printf("  elevation: range %.2f m, std %.3f m, mean slope %.1f deg, p95 slope %.1f deg, "
+              "max slope %.1f deg, >20 deg %.3f, >30 deg %.3f, roughness %.3f m\n",
+              s.range_m, s.std_m, s.mean_slope_deg, s.p95_slope_deg, s.max_slope_deg,
+              s.fraction_above_20deg, s.fraction_above_30deg, s.roughness_m);
+  std::printf("  pairs: %zu, all connected, %zu path points\n", task.pairs.size(), path_points);
+  std::printf("  wrote %s and %s\n", task_path.lexically_normal().string().c_str(),
+              image_path.lexically_normal().string().c_str());
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    const Options o = ParseArgs(argc, argv);
+    if (o.help) {
+      std::fputs(kUsage, stdout);
+      return 0;
+    }
+    return Run(o);
+  } catch (const vb::InputError& e) {
+    std::fprintf(stderr, "vb_gen: %s\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "vb_gen: error: %s\n", e.what());
+    return 1;
+  }
+}
