@@ -85,6 +85,7 @@ struct PhysicsWorld::Impl {
     if (!b.motors[link]) {
       b.motors[link] = std::make_unique<btMultiBodyJointMotor>(b.mb.get(), link, 0.0, 0.0);
       world.addMultiBodyConstraint(b.motors[link].get());
+      b.motors[link]->finalizeMultiDof();
     }
     return b.motors[link].get();
   }
@@ -228,6 +229,20 @@ MultiBodyId PhysicsWorld::AddMultiBody(const MultiBodyBaseSpec& base,
       impl_->shapes.push_back(std::move(cyl));
       body.colliders.push_back(std::move(col));
     }
+    if (!l.has_cylinder) {
+      // Bullet solves a link's motors and limits in the simulation island of that link's own
+      // collider; a link without one gets island -1 and its motors are silently skipped. A tiny
+      // sphere that collides with nothing (group 0, mask 0) puts the link in its body's island.
+      auto anchor = std::make_unique<btSphereShape>(0.01);
+      auto col = std::make_unique<btMultiBodyLinkCollider>(mb, i);
+      col->setCollisionShape(anchor.get());
+      col->setUserIndex(kNoTag);
+      col->setUserIndex2(-1);
+      impl_->world.addCollisionObject(col.get(), 0, 0);
+      mb->getLink(i).m_collider = col.get();
+      impl_->shapes.push_back(std::move(anchor));
+      body.colliders.push_back(std::move(col));
+    }
     if (l.limit_lower <= l.limit_upper) {
       auto lim = std::make_unique<btMultiBodyJointLimitConstraint>(mb, i, l.limit_lower,
                                                                    l.limit_upper);
@@ -285,7 +300,9 @@ void PhysicsWorld::SetJointVelocityMotor(MultiBodyId id, int link, double target
 void PhysicsWorld::SetJointPositionMotor(MultiBodyId id, int link, double target_q,
                                          double max_force) {
   btMultiBodyJointMotor* m = impl_->Motor(id, link);
-  // Position error corrected over ~5 steps, velocity error damped fully each step.
+  // Position error corrected over ~5 steps, velocity error damped fully each step. The motor's
+  // error-reduction parameter must be 1 for the position term to count at all.
+  m->setErp(1.0);
   m->setPositionTarget(target_q, 0.2);
   m->setVelocityTarget(0.0, 1.0);
   m->setMaxAppliedImpulse(std::max(0.0, max_force) * impl_->last_dt);
