@@ -194,16 +194,27 @@ TrialResult RunTrial(const terrain::TaskSpec& task, const vehicles::VehicleParam
   const terrain::OccupancyGrid inflated = terrain::Inflate(
       terrain::RasterizeObstacles(task), static_cast<int>(4.0 * scale));
 
-  // Vehicle facing the goal, wheel bottoms start_height above the terrain under the start; it
-  // settles onto the local slope during the first steps.
+  // Vehicle facing the goal, dropped from start_height: the highest ground under the reference
+  // point and the wheel centres decides the height, so that on a slope no wheel starts inside
+  // the terrain (3.4 m wheelbase on a 30 deg slope: ~1 m of height difference). It settles onto
+  // the local slope during the first steps.
   const Vec2 to_goal0 = pair.goal_m - pair.start_m;
+  const double yaw0 = std::atan2(to_goal0.y(), to_goal0.x());
+  const Eigen::Rotation2Dd yaw_rotation(yaw0);
+  double ground_z = ground.Height(pair.start_m.x(), pair.start_m.y());
+  for (const vehicles::AxleParams& axle : vehicle_params.axles) {
+    for (double side : {1.0, -1.0}) {
+      const Vec2 wheel_xy = pair.start_m + yaw_rotation * Vec2(axle.x_m, side * axle.half_track_m);
+      ground_z = std::max(ground_z, ground.Height(wheel_xy.x(), wheel_xy.y()));
+    }
+  }
   Pose start_pose;
   start_pose.position =
       Vec3(pair.start_m.x(), pair.start_m.y(),
-           ground.Height(pair.start_m.x(), pair.start_m.y()) + vehicle_params.wheel.radius_m -
+           ground_z + vehicle_params.wheel.radius_m -
                (vehicle_params.axles.empty() ? 0.0 : vehicle_params.axles[0].z_m) +
                rules.start_height_m);
-  start_pose.rotation = FromYaw(std::atan2(to_goal0.y(), to_goal0.x()));
+  start_pose.rotation = FromYaw(yaw0);
   vehicles::Vehicle vehicle(vehicle_params, ground, start_pose, &world);
 
   controllers::EpisodeContext context;

@@ -1,0 +1,144 @@
+// vb_run end to end through its command line: help, input errors with exit code 2, a short real
+// trial writing JSON + CSV, and byte-identical reruns.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kVbRun = VB_BIN_DIR "/vb_run";
+const std::string kTask = VB_SOURCE_DIR "/tasks/env042.yaml";
+
+struct Outcome {
+  int exit_code = -1;
+  std::string output;  // stdout and stderr
+};
+
+Outcome RunVbRun(const std::string& args) {
+  Outcome o;
+  FILE* p = popen((kVbRun + " " + args + " 2>&1").c_str(), "r");
+  if (p == nullptr) return o;
+  char buf[4096];
+  size_t n;
+  while ((n = fread(buf, 1, sizeof(buf), p)) > 0) o.output.append(buf, n);
+  const int status = pclose(p);
+  o.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return o;
+}
+
+std::string ReadFile(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// The JSON without the lines that legitimately differ between runs (wall clock, machine).
+std::string StableJsonLines(const fs::path& path) {
+  std::istringstream in(ReadFile(path));
+  std::string line, out;
+  while (std::getline(in, line)) {
+    if (line.find("\"wall_time_s\"") != std::string::npos ||
+        line.find("\"real_time_factor\"") != std::string::npos ||
+        line.find("\"host\"") != std::string::npos) {
+      continue;
+    }
+    out += line + "\n";
+  }
+  return out;
+}
+
+// A fresh scratch directory per test, removed afterwards.
+class VbRunTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("vb_run_test_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  fs::path dir_;
+};
+
+TEST_F(VbRunTest, HelpDocumentsFlagsOutputsAndExitCodes) {
+  const Outcome o = RunVbRun("--help");
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  for (const char* s : {"--vehicle", "--system", "--pair", "--seed", "--out", "--traj-every",
+                        "--time-limit", "--quiet", "summary.csv", "_traj.csv", "exit codes"}) {
+    EXPECT_NE(o.output.find(s), std::string::npos) << "help lacks " << s;
+  }
+}
+
+TEST_F(VbRunTest, UnknownVehicleListsTheAvailableOnes) {
+  const Outcome o = RunVbRun(kTask + " --vehicle tricycle --out " + dir_.string());
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("vb_run: error:"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("tricycle"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("hmmwv"), std::string::npos) << o.output;
+}
+
+TEST_F(VbRunTest, UnknownSystemListsTheAvailableOnes) {
+  const Outcome o = RunVbRun(kTask + " --vehicle hmmwv --system teleport --out " + dir_.string());
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("pid"), std::string::npos) << o.output;
+}
+
+TEST_F(VbRunTest, BadInputsExitWithCodeTwo) {
+  EXPECT_EQ(RunVbRun("").exit_code, 2);
+  EXPECT_EQ(RunVbRun((dir_ / "no_such_task.yaml").string() + " --vehicle hmmwv").exit_code, 2);
+  EXPECT_EQ(RunVbRun(kTask + " --vehicle hmmwv --bogus-flag").exit_code, 2);
+  EXPECT_EQ(RunVbRun(kTask + " --vehicle hmmwv --seed minus-one").exit_code, 2);
+  EXPECT_EQ(RunVbRun(kTask + " --vehicle hmmwv --traj-every 0").exit_code, 2);
+  const Outcome o = RunVbRun(kTask + " --vehicle hmmwv --pair 10 --out " + dir_.string());
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("out of range"), std::string::npos) << o.output;
+}
+
+TEST_F(VbRunTest, ShortRunWritesResultsAndRerunsAreIdentical) {
+  ASSERT_TRUE(fs::exists(kTask)) << kTask;
+  const std::string common = kTask + " --vehicle hmmwv --pair 0 --seed 7 --time-limit 2 --out ";
+  const Outcome a = RunVbRun(common + (dir_ / "a").string());
+  ASSERT_EQ(a.exit_code, 0) << a.output;
+  const Outcome b = RunVbRun(common + (dir_ / "b").string() + " --quiet");
+  ASSERT_EQ(b.exit_code, 0) << b.output;
+  EXPECT_NE(a.output.find("pair 0"), std::string::npos) << a.output;
+  EXPECT_EQ(b.output.find("pair 0"), std::string::npos) << b.output;
+  EXPECT_NE(b.output.find("1 trials"), std::string::npos) << b.output;
+
+  const std::string stem = "env042_p0_s7_hmmwv_pid";
+  for (const char* d : {"a", "b"}) {
+    ASSERT_TRUE(fs::exists(dir_ / d / (stem + ".json"))) << d;
+    ASSERT_TRUE(fs::exists(dir_ / d / (stem + "_traj.csv"))) << d;
+    ASSERT_TRUE(fs::exists(dir_ / d / "summary.csv")) << d;
+  }
+  const std::string json = ReadFile(dir_ / "a" / (stem + ".json"));
+  EXPECT_NE(json.find("\"status\": \"timeout\""), std::string::npos) << json;
+  EXPECT_NE(json.find("\"traversal_time_s\": null"), std::string::npos) << json;
+  EXPECT_NE(json.find("\"task_fnv1a64\": \""), std::string::npos) << json;
+
+  const std::string traj = ReadFile(dir_ / "a" / (stem + "_traj.csv"));
+  EXPECT_EQ(traj.rfind("t_s,x_m,y_m,z_m,", 0), 0u);
+  // Header plus steps 0..400.
+  EXPECT_EQ(std::count(traj.begin(), traj.end(), '\n'), 402);
+  EXPECT_EQ(traj, ReadFile(dir_ / "b" / (stem + "_traj.csv")));
+  EXPECT_EQ(StableJsonLines(dir_ / "a" / (stem + ".json")),
+            StableJsonLines(dir_ / "b" / (stem + ".json")));
+  // No temporary files are left behind by the atomic writes.
+  for (const auto& entry : fs::directory_iterator(dir_ / "a")) {
+    EXPECT_EQ(entry.path().string().find(".tmp"), std::string::npos) << entry.path();
+  }
+}
+
+}  // namespace

@@ -1,0 +1,153 @@
+// RunTrial end to end on small synthetic worlds with the real HMMWV: success on flat ground,
+// bit-identical reruns, failure classification, and the set-up errors.
+#include "vb/engine/runner/episode.h"
+
+#include <gtest/gtest.h>
+
+#include "io/vehicle_io.h"
+#include "vb/engine/error.h"
+
+namespace vb::runner {
+namespace {
+
+// 128 m x 128 m flat dirt (mu 0.8), no obstacles, one pair 40 m apart along x.
+terrain::TaskSpec FlatTask() {
+  terrain::TaskSpec t;
+  t.name = "flat";
+  t.source_file = "synthetic_flat.yaml";
+  t.size_x_m = 128.0;
+  t.size_y_m = 128.0;
+  t.heights.rows = 129;
+  t.heights.cols = 129;
+  t.heights.heights_m.assign(129 * 129, 0.0);
+  t.patches.rows = 16;
+  t.patches.cols = 16;
+  t.patches.classes.assign(16 * 16, terrain::SurfaceClass::kDirt);
+  t.patches.friction.assign(16 * 16, 0.8);
+  terrain::StartGoalPair pair;
+  pair.start_m = Vec2(-20.0, 0.0);
+  pair.goal_m = Vec2(20.0, 0.0);
+  pair.path_m = {pair.start_m, pair.goal_m};
+  t.pairs.push_back(pair);
+  return t;
+}
+
+const vehicles::VehicleParams& Hmmwv() {
+  static const vehicles::VehicleParams params =
+      io::LoadVehicle(VB_SOURCE_DIR "/data/vehicles/hmmwv.yaml");
+  return params;
+}
+
+TEST(EpisodeTest, DrivesToTheGoalOnFlatGround) {
+  const TrialResult r = RunTrial(FlatTask(), Hmmwv(), TrialSpec());
+  EXPECT_EQ(r.status, TrialStatus::kSuccess) << r.message;
+  // 30 m to the goal circle from rest at <= 4 m/s.
+  EXPECT_GT(r.traversal_time_s, 6.0);
+  EXPECT_LT(r.traversal_time_s, 20.0);
+  EXPECT_EQ(r.traversal_time_s, r.sim_time_s);
+  EXPECT_LE(r.final_goal_distance_m, 10.0);
+  EXPECT_NEAR(r.path_length_m, 30.0, 3.0);
+  EXPECT_EQ(r.obstacle_contacts, 0);
+  EXPECT_LT(r.abs_roll_deg.max, 5.0);
+  EXPECT_LT(r.abs_pitch_deg.max, 8.0);  // squat under full throttle
+  // Full throttle from rest, then the speed controller holds the target speed.
+  EXPECT_EQ(r.throttle.max, 1.0);
+  EXPECT_NEAR(r.trajectory.back().speed_mps, 4.0, 0.3);
+  EXPECT_LT(r.abs_steering.max, 0.2);
+  // One sample per step, the initial state included.
+  EXPECT_EQ(r.trajectory.size(),
+            static_cast<size_t>(std::lround(r.sim_time_s / EpisodeRules().step_s)) + 1);
+  EXPECT_EQ(r.trajectory.front().time_s, 0.0);
+  EXPECT_EQ(r.trajectory.back().time_s, r.sim_time_s);
+  ASSERT_EQ(r.trajectory.back().wheel_surface.size(), Hmmwv().axles.size() * 2);
+  EXPECT_GT(r.real_time_factor, 0.0);
+}
+
+TEST(EpisodeTest, RerunsAreBitIdentical) {
+  EpisodeRules rules;
+  rules.time_limit_s = 4.0;
+  const TrialResult a = RunTrial(FlatTask(), Hmmwv(), TrialSpec(), rules);
+  const TrialResult b = RunTrial(FlatTask(), Hmmwv(), TrialSpec(), rules);
+  ASSERT_EQ(a.trajectory.size(), b.trajectory.size());
+  for (size_t i = 0; i < a.trajectory.size(); ++i) {
+    const TrajectorySample& p = a.trajectory[i];
+    const TrajectorySample& q = b.trajectory[i];
+    ASSERT_TRUE(p.position_W == q.position_W && p.velocity_W == q.velocity_W &&
+                p.rpy.roll_rad == q.rpy.roll_rad && p.rpy.pitch_rad == q.rpy.pitch_rad &&
+                p.rpy.yaw_rad == q.rpy.yaw_rad && p.throttle == q.throttle &&
+                p.steering == q.steering && p.braking == q.braking && p.gear == q.gear &&
+                p.wheel_surface == q.wheel_surface)
+        << "first difference at sample " << i;
+  }
+  EXPECT_EQ(a.path_length_m, b.path_length_m);
+  EXPECT_EQ(a.abs_roll_deg.var, b.abs_roll_deg.var);
+}
+
+TEST(EpisodeTest, ShortTimeLimitIsATimeout) {
+  EpisodeRules rules;
+  rules.time_limit_s = 3.0;
+  rules.trajectory_every_n_steps = 7;
+  const TrialResult r = RunTrial(FlatTask(), Hmmwv(), TrialSpec(), rules);
+  EXPECT_EQ(r.status, TrialStatus::kTimeout) << r.message;
+  EXPECT_NEAR(r.sim_time_s, 3.0, 1e-9);
+  EXPECT_EQ(r.traversal_time_s, -1.0);
+  // Samples at steps 0, 7, ..., 595, then the final step 600.
+  EXPECT_EQ(r.trajectory.size(), 600u / 7 + 2);
+  EXPECT_EQ(r.trajectory.back().time_s, r.sim_time_s);
+}
+
+TEST(EpisodeTest, WallOfRocksGetsStuckAndCountsContacts) {
+  terrain::TaskSpec task = FlatTask();
+  for (double y = -62.0; y <= 62.0; y += 4.0) task.rocks.push_back({0.0, y, 1.0});
+  EpisodeRules rules;
+  rules.time_limit_s = 25.0;
+  const TrialResult r = RunTrial(task, Hmmwv(), TrialSpec(), rules);
+  EXPECT_TRUE(r.status == TrialStatus::kStuck || r.status == TrialStatus::kTimeout)
+      << TrialStatusName(r.status) << ": " << r.message;
+  EXPECT_GE(r.obstacle_contacts, 1);
+  EXPECT_LT(r.trajectory.back().position_W.x(), 0.0);
+  EXPECT_GT(r.final_goal_distance_m, 10.0);
+}
+
+TEST(EpisodeTest, SetUpErrorsAreInputErrors) {
+  const terrain::TaskSpec task = FlatTask();
+  TrialSpec spec;
+  spec.pair_index = 1;
+  EXPECT_THROW(RunTrial(task, Hmmwv(), spec), InputError);
+  spec.pair_index = -1;
+  EXPECT_THROW(RunTrial(task, Hmmwv(), spec), InputError);
+  spec.pair_index = 0;
+  spec.system = "teleport";
+  try {
+    RunTrial(task, Hmmwv(), spec);
+    FAIL() << "unknown system accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.key(), "system");
+    EXPECT_NE(std::string(e.what()).find("valid: pid"), std::string::npos) << e.what();
+  }
+}
+
+TEST(EpisodeTest, DeformableTerrainIsRefusedHonestly) {
+  terrain::TaskSpec task = FlatTask();
+  task.patches.classes[17] = terrain::SurfaceClass::kMud;
+  task.patches.friction[17] = 0.0;
+  try {
+    RunTrial(task, Hmmwv(), TrialSpec());
+    FAIL() << "deformable task accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), "synthetic_flat.yaml");
+    EXPECT_EQ(e.key(), "semantics.classes");
+    EXPECT_NE(std::string(e.what()).find("soil solver"), std::string::npos) << e.what();
+  }
+}
+
+TEST(EpisodeTest, StatusNames) {
+  EXPECT_EQ(TrialStatusName(TrialStatus::kSuccess), "success");
+  EXPECT_EQ(TrialStatusName(TrialStatus::kRollover), "rollover");
+  EXPECT_EQ(TrialStatusName(TrialStatus::kStuck), "stuck");
+  EXPECT_EQ(TrialStatusName(TrialStatus::kTimeout), "timeout");
+  EXPECT_EQ(TrialStatusName(TrialStatus::kSimError), "sim_error");
+}
+
+}  // namespace
+}  // namespace vb::runner

@@ -1,0 +1,258 @@
+// Result writers. Text is assembled in memory and then written in one go to a temporary file
+// beside the target, which is renamed over it: rename() within a directory is atomic on POSIX.
+#include "io/result_io.h"
+
+#include <unistd.h>
+
+#include <cerrno>
+#include <cinttypes>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "vb/engine/error.h"
+
+namespace vb::io {
+
+namespace {
+
+constexpr double kRadToDeg = 180.0 / kPi;
+
+std::string Number(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof(buf), "%.17g", x);
+  return buf;
+}
+
+// CSV field: quoted (with doubled quotes) only when it contains a separator, quote or newline.
+std::string CsvField(const std::string& s) {
+  if (s.find_first_of(",\"\r\n") == std::string::npos) return s;
+  std::string out = "\"";
+  for (char c : s) {
+    if (c == '"') out += '"';
+    out += c;
+  }
+  return out + "\"";
+}
+
+void WriteAtomically(const std::string& path, const std::string& text) {
+  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
+  std::FILE* f = std::fopen(tmp.c_str(), "wb");
+  if (f == nullptr) {
+    throw InputError(path, 0, "", std::string("cannot write: ") + std::strerror(errno));
+  }
+  const bool written = std::fwrite(text.data(), 1, text.size(), f) == text.size();
+  const bool flushed = std::fflush(f) == 0 && ::fsync(::fileno(f)) == 0;
+  const int saved_errno = errno;
+  std::fclose(f);
+  if (!written || !flushed || std::rename(tmp.c_str(), path.c_str()) != 0) {
+    const int err = written && flushed ? errno : saved_errno;
+    std::remove(tmp.c_str());
+    throw InputError(path, 0, "", std::string("cannot write: ") + std::strerror(err));
+  }
+}
+
+// Whole file as bytes; empty if it cannot be opened.
+std::string ReadBytes(const std::string& path, bool* ok) {
+  std::ifstream in(path, std::ios::binary);
+  *ok = static_cast<bool>(in);
+  if (!in) return "";
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+std::string StatsJson(const runner::SignalStats& s) {
+  return "{\"mean\": " + JsonNumber(s.mean) + ", \"var\": " + JsonNumber(s.var) +
+         ", \"max\": " + JsonNumber(s.max) + "}";
+}
+
+// Minimal pretty printer for a flat object: one "key": value per line, in insertion order.
+class JsonObject {
+ public:
+  explicit JsonObject(int indent) : indent_(indent) {}
+  void Raw(const std::string& key, const std::string& json_value) {
+    fields_.push_back(std::string(indent_ + 2, ' ') + JsonString(key) + ": " + json_value);
+  }
+  void Str(const std::string& key, const std::string& v) { Raw(key, JsonString(v)); }
+  void Num(const std::string& key, double v) { Raw(key, JsonNumber(v)); }
+  void Int(const std::string& key, long long v) { Raw(key, std::to_string(v)); }
+  void UInt(const std::string& key, uint64_t v) { Raw(key, std::to_string(v)); }
+  std::string Text() const {
+    std::string out = "{\n";
+    for (size_t i = 0; i < fields_.size(); ++i) {
+      out += fields_[i] + (i + 1 < fields_.size() ? ",\n" : "\n");
+    }
+    return out + std::string(indent_, ' ') + "}";
+  }
+
+ private:
+  int indent_;
+  std::vector<std::string> fields_;
+};
+
+}  // namespace
+
+std::string JsonString(const std::string& s) {
+  std::string out = "\"";
+  for (unsigned char c : s) {
+    switch (c) {
+      case '"': out += "\\\""; break;
+      case '\\': out += "\\\\"; break;
+      case '\b': out += "\\b"; break;
+      case '\f': out += "\\f"; break;
+      case '\n': out += "\\n"; break;
+      case '\r': out += "\\r"; break;
+      case '\t': out += "\\t"; break;
+      default:
+        if (c < 0x20) {
+          char buf[8];
+          std::snprintf(buf, sizeof(buf), "\\u%04x", c);
+          out += buf;
+        } else {
+          out += static_cast<char>(c);  // UTF-8 passes through unchanged
+        }
+    }
+  }
+  return out + "\"";
+}
+
+std::string JsonNumber(double x) { return std::isfinite(x) ? Number(x) : "null"; }
+
+uint64_t Fnv1a64(const std::string& bytes, uint64_t hash) {
+  for (unsigned char c : bytes) {
+    hash ^= c;
+    hash *= 0x100000001b3ull;
+  }
+  return hash;
+}
+
+Provenance MakeProvenance(const terrain::TaskSpec& task, const runner::TrialSpec& spec) {
+  Provenance p;
+  p.vb_version = VB_VERSION;
+  p.git_commit = VB_GIT_COMMIT;
+  p.task_file = task.source_file;
+  p.vehicle = spec.vehicle;
+  p.system = spec.system;
+  p.seed = spec.seed;
+
+  bool ok = false;
+  const std::string task_bytes = ReadBytes(task.source_file, &ok);
+  if (!ok) throw InputError(task.source_file, 0, "", "cannot read the task file to hash it");
+  uint64_t hash = Fnv1a64(task_bytes);
+  if (!task.height_image.empty()) {
+    const std::filesystem::path image =
+        std::filesystem::path(task.source_file).parent_path() / task.height_image;
+    hash = Fnv1a64(ReadBytes(image.string(), &ok), hash);
+  }
+  char hex[17];
+  std::snprintf(hex, sizeof(hex), "%016" PRIx64, hash);
+  p.task_fnv1a64 = hex;
+
+  char host[256] = {0};
+  if (::gethostname(host, sizeof(host) - 1) == 0) p.host = host;
+  return p;
+}
+
+std::string TrialFileStem(const runner::TrialResult& r) {
+  return r.task_name + "_p" + std::to_string(r.spec.pair_index) + "_s" +
+         std::to_string(r.spec.seed) + "_" + r.spec.vehicle + "_" + r.spec.system;
+}
+
+void WriteTrialJson(const runner::TrialResult& r, const std::string& path,
+                    const Provenance& provenance) {
+  const bool success = r.status == runner::TrialStatus::kSuccess;
+  const std::string status(runner::TrialStatusName(r.status));
+
+  JsonObject prov(2);
+  prov.Str("vb_version", provenance.vb_version);
+  prov.Str("git_commit", provenance.git_commit);
+  prov.Str("task_file", provenance.task_file);
+  prov.Str("task_fnv1a64", provenance.task_fnv1a64);
+  prov.Str("vehicle", provenance.vehicle);
+  prov.Str("system", provenance.system);
+  prov.UInt("seed", provenance.seed);
+  prov.Str("host", provenance.host);
+
+  JsonObject o(0);
+  o.Str("task", r.task_name);
+  o.Int("pair", r.spec.pair_index);
+  o.UInt("seed", r.spec.seed);
+  o.Str("vehicle", r.spec.vehicle);
+  o.Str("system", r.spec.system);
+  o.Str("status", status);
+  o.Raw("failure_type", success ? "null" : JsonString(status));
+  o.Str("message", r.message);
+  o.Raw("traversal_time_s", success ? JsonNumber(r.traversal_time_s) : "null");
+  o.Num("sim_time_s", r.sim_time_s);
+  o.Num("final_goal_distance_m", r.final_goal_distance_m);
+  o.Num("path_length_m", r.path_length_m);
+  o.Int("obstacle_contacts", r.obstacle_contacts);
+  o.Raw("roll_deg", StatsJson(r.roll_deg));
+  o.Raw("pitch_deg", StatsJson(r.pitch_deg));
+  o.Raw("abs_roll_deg", StatsJson(r.abs_roll_deg));
+  o.Raw("abs_pitch_deg", StatsJson(r.abs_pitch_deg));
+  o.Raw("throttle", StatsJson(r.throttle));
+  o.Raw("steering", StatsJson(r.steering));
+  o.Raw("abs_steering", StatsJson(r.abs_steering));
+  o.Int("trajectory_samples", static_cast<long long>(r.trajectory.size()));
+  o.Num("wall_time_s", r.wall_time_s);
+  o.Num("real_time_factor", r.real_time_factor);
+  o.Raw("provenance", prov.Text());
+  WriteAtomically(path, o.Text() + "\n");
+}
+
+void WriteTrajectoryCsv(const runner::TrialResult& r, const std::string& path) {
+  const size_t wheels = r.trajectory.empty() ? 0 : r.trajectory.front().wheel_surface.size();
+  std::string text =
+      "t_s,x_m,y_m,z_m,vx_mps,vy_mps,vz_mps,speed_mps,roll_deg,pitch_deg,yaw_deg,throttle,"
+      "steering,braking,gear";
+  for (size_t i = 0; i < wheels; ++i) text += ",surface_w" + std::to_string(i);
+  for (size_t i = 0; i < wheels; ++i) text += ",sinkage_w" + std::to_string(i) + "_m";
+  text += "\n";
+  for (const runner::TrajectorySample& s : r.trajectory) {
+    const double values[] = {s.time_s,         s.position_W.x(), s.position_W.y(),
+                             s.position_W.z(), s.velocity_W.x(), s.velocity_W.y(),
+                             s.velocity_W.z(), s.speed_mps,      s.rpy.roll_rad * kRadToDeg,
+                             s.rpy.pitch_rad * kRadToDeg,        s.rpy.yaw_rad * kRadToDeg,
+                             s.throttle,       s.steering,       s.braking};
+    for (double v : values) text += Number(v) + ",";
+    text += std::to_string(s.gear);
+    for (size_t i = 0; i < wheels; ++i) {
+      text += "," + std::to_string(i < s.wheel_surface.size() ? s.wheel_surface[i] : -1);
+    }
+    for (size_t i = 0; i < wheels; ++i) {
+      text += "," + Number(i < s.wheel_sinkage_m.size() ? s.wheel_sinkage_m[i] : 0.0);
+    }
+    text += "\n";
+  }
+  WriteAtomically(path, text);
+}
+
+void WriteSummaryCsv(const std::vector<runner::TrialResult>& results, const std::string& path) {
+  std::string text =
+      "task,pair,seed,vehicle,system,status,traversal_time_s,sim_time_s,final_goal_distance_m,"
+      "path_length_m,obstacle_contacts,mean_abs_roll_deg,var_abs_roll_deg,max_abs_roll_deg,"
+      "mean_abs_pitch_deg,var_abs_pitch_deg,max_abs_pitch_deg,mean_throttle,mean_abs_steering,"
+      "wall_time_s,real_time_factor,message\n";
+  for (const runner::TrialResult& r : results) {
+    const bool success = r.status == runner::TrialStatus::kSuccess;
+    text += CsvField(r.task_name) + "," + std::to_string(r.spec.pair_index) + "," +
+            std::to_string(r.spec.seed) + "," + CsvField(r.spec.vehicle) + "," +
+            CsvField(r.spec.system) + "," + std::string(runner::TrialStatusName(r.status)) + "," +
+            (success ? Number(r.traversal_time_s) : "") + "," + Number(r.sim_time_s) + "," +
+            Number(r.final_goal_distance_m) + "," + Number(r.path_length_m) + "," +
+            std::to_string(r.obstacle_contacts) + "," + Number(r.abs_roll_deg.mean) + "," +
+            Number(r.abs_roll_deg.var) + "," + Number(r.abs_roll_deg.max) + "," +
+            Number(r.abs_pitch_deg.mean) + "," + Number(r.abs_pitch_deg.var) + "," +
+            Number(r.abs_pitch_deg.max) + "," + Number(r.throttle.mean) + "," +
+            Number(r.abs_steering.mean) + "," + Number(r.wall_time_s) + "," +
+            Number(r.real_time_factor) + "," + CsvField(r.message) + "\n";
+  }
+  WriteAtomically(path, text);
+}
+
+}  // namespace vb::io

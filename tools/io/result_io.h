@@ -1,0 +1,55 @@
+// Writing trial results: one JSON summary and one trajectory CSV per trial, and a summary CSV
+// with one row per trial. Doubles are printed with "%.17g" (round trip), so reruns of the same
+// trial give byte-identical files apart from the wall-clock fields and the host name. Every file
+// is written atomically (temporary file in the same directory, then rename), so a crashed or
+// killed batch never leaves a half-written result behind.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "vb/engine/runner/episode.h"
+#include "vb/terrain/task.h"
+
+namespace vb::io {
+
+// Where a result came from. vb_version and git_commit default to the build's own.
+struct Provenance {
+  std::string vb_version;
+  std::string git_commit;
+  std::string task_file;
+  // 64-bit FNV-1a over the task file bytes followed by the height image bytes, 16 hex digits:
+  // identifies the exact world even if the file is edited in place.
+  std::string task_fnv1a64;
+  std::string vehicle;
+  std::string system;
+  uint64_t seed = 0;
+  std::string host;
+};
+
+// Fills a Provenance for a trial of `task` (reads the task file and its height image to hash
+// them; a missing file hashes as empty). Throws InputError if the task file cannot be read.
+Provenance MakeProvenance(const terrain::TaskSpec& task, const runner::TrialSpec& spec);
+
+// 64-bit FNV-1a of `bytes`, continuing from `hash` (start with kFnv1a64Offset).
+constexpr uint64_t kFnv1a64Offset = 0xcbf29ce484222325ull;
+uint64_t Fnv1a64(const std::string& bytes, uint64_t hash = kFnv1a64Offset);
+
+// Standard file names of a trial's outputs: <task>_p<K>_s<seed>_<vehicle>_<system>.
+std::string TrialFileStem(const runner::TrialResult& result);
+
+// Writers. Each throws InputError naming the path if the file cannot be written.
+void WriteTrialJson(const runner::TrialResult& result, const std::string& path,
+                    const Provenance& provenance);
+// Columns: t_s, x_m, y_m, z_m, vx_mps, vy_mps, vz_mps, speed_mps, roll_deg, pitch_deg, yaw_deg,
+// throttle, steering, braking, gear, surface_w<i> (class id, -1 airborne), sinkage_w<i>_m.
+void WriteTrajectoryCsv(const runner::TrialResult& result, const std::string& path);
+void WriteSummaryCsv(const std::vector<runner::TrialResult>& results, const std::string& path);
+
+// JSON string literal of `s` (quotes included), escaping per RFC 8259.
+std::string JsonString(const std::string& s);
+// JSON number of `x` with "%.17g"; non-finite values (not representable in JSON) become null.
+std::string JsonNumber(double x);
+
+}  // namespace vb::io

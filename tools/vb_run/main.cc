@@ -1,0 +1,208 @@
+// vb_run: runs trials of one task (pairs x one seed x one vehicle x one system) and writes their
+// results. Thin on purpose: parse flags -> load -> RunTrial -> write.
+#include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "io/result_io.h"
+#include "io/task_io.h"
+#include "io/vehicle_io.h"
+#include "vb/controllers/controller.h"
+#include "vb/engine/error.h"
+#include "vb/engine/runner/episode.h"
+
+namespace {
+
+constexpr const char* kUsage = R"(usage: vb_run TASK --vehicle NAME [options]
+
+Runs navigation trials on TASK (a task file, e.g. tasks/env042.yaml) and writes their results.
+
+options:
+  --vehicle NAME     vehicle description $VB_DATA_DIR/vehicles/NAME.yaml (required);
+                     VB_DATA_DIR defaults to the source tree's data/ directory
+  --system NAME      mobility system (default: pid)
+  --pair K|all       start/goal pair index, or all pairs (default: all)
+  --seed S           trial seed, an unsigned 64-bit integer (default: 0)
+  --out DIR          output directory (default: results/<task name>/)
+  --traj-every N     keep every N-th physics step in the trajectory (default: 1)
+  --time-limit S     simulated time limit in seconds (default: 60, the benchmark rule; for tests
+                     and quick looks only, results with another limit are not benchmark results)
+  --quiet            no per-trial lines, only the final summary
+  --help             this text
+
+outputs, per trial, in DIR:
+  <task>_p<K>_s<seed>_<vehicle>_<system>.json       status, failure type, metrics, provenance
+  <task>_p<K>_s<seed>_<vehicle>_<system>_traj.csv   per-step trajectory
+and DIR/summary.csv with one row per trial of this run. Files are written atomically.
+
+exit codes:
+  0  all trials ran (whatever their status: success, rollover, stuck, timeout, sim_error)
+  1  internal error
+  2  bad input (task, vehicle, system, pair, flags); the message names the culprit
+)";
+
+struct Options {
+  std::string task_path;
+  std::string vehicle;
+  std::string system = "pid";
+  std::string pair = "all";
+  uint64_t seed = 0;
+  std::string out_dir;
+  int traj_every = 1;
+  double time_limit_s = vb::runner::EpisodeRules().time_limit_s;
+  bool quiet = false;
+  bool help = false;
+};
+
+std::string Join(const std::vector<std::string>& names) {
+  std::string s;
+  for (const std::string& n : names) s += (s.empty() ? "" : ", ") + n;
+  return s;
+}
+
+// Parses a whole-string number; throws InputError naming the flag otherwise.
+template <typename T>
+T ParseNumber(const std::string& flag, const std::string& text, T (*parse)(const char*, char**)) {
+  char* end = nullptr;
+  errno = 0;
+  const T v = parse(text.c_str(), &end);
+  if (text.empty() || *end != '\0' || errno != 0 || text[0] == '-') {
+    throw vb::InputError("", 0, flag, "'" + text + "' is not a valid non-negative number");
+  }
+  return v;
+}
+unsigned long long ParseU64(const char* s, char** e) { return std::strtoull(s, e, 10); }
+double ParseDouble(const char* s, char** e) { return std::strtod(s, e); }
+
+Options ParseArgs(int argc, char** argv) {
+  Options o;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc) throw vb::InputError("", 0, a, "missing value");
+      return argv[++i];
+    };
+    if (a == "--help" || a == "-h") {
+      o.help = true;
+    } else if (a == "--vehicle") {
+      o.vehicle = value();
+    } else if (a == "--system") {
+      o.system = value();
+    } else if (a == "--pair") {
+      o.pair = value();
+    } else if (a == "--seed") {
+      o.seed = ParseNumber<unsigned long long>(a, value(), ParseU64);
+    } else if (a == "--out") {
+      o.out_dir = value();
+    } else if (a == "--traj-every") {
+      const unsigned long long n = ParseNumber<unsigned long long>(a, value(), ParseU64);
+      if (n < 1 || n > 1000000) throw vb::InputError("", 0, a, "must be in [1, 1000000]");
+      o.traj_every = static_cast<int>(n);
+    } else if (a == "--time-limit") {
+      o.time_limit_s = ParseNumber<double>(a, value(), ParseDouble);
+      if (!(o.time_limit_s > 0.0)) throw vb::InputError("", 0, a, "must be > 0");
+    } else if (a == "--quiet") {
+      o.quiet = true;
+    } else if (!a.empty() && a[0] == '-') {
+      throw vb::InputError("", 0, a, "unknown option (see --help)");
+    } else if (o.task_path.empty()) {
+      o.task_path = a;
+    } else {
+      throw vb::InputError("", 0, a, "more than one task given (see --help)");
+    }
+  }
+  if (o.help) return o;
+  if (o.task_path.empty()) throw vb::InputError("", 0, "TASK", "no task file given (see --help)");
+  if (o.vehicle.empty()) throw vb::InputError("", 0, "--vehicle", "required (see --help)");
+  return o;
+}
+
+int Run(const Options& o) {
+  const char* env_data = std::getenv("VB_DATA_DIR");
+  const std::string data_dir = env_data != nullptr ? env_data : VB_SOURCE_DIR "/data";
+  const std::vector<std::string> vehicles = vb::io::VehicleNames(data_dir);
+  if (std::find(vehicles.begin(), vehicles.end(), o.vehicle) == vehicles.end()) {
+    throw vb::InputError("", 0, "--vehicle", "unknown vehicle '" + o.vehicle + "' in " + data_dir +
+                                                 "/vehicles; valid: " + Join(vehicles));
+  }
+  const std::vector<std::string> systems = vb::controllers::ControllerNames();
+  if (std::find(systems.begin(), systems.end(), o.system) == systems.end()) {
+    throw vb::InputError("", 0, "--system",
+                         "unknown system '" + o.system + "'; valid: " + Join(systems));
+  }
+  const vb::terrain::TaskSpec task = vb::io::LoadTask(o.task_path);
+  const vb::vehicles::VehicleParams params =
+      vb::io::LoadVehicle(data_dir + "/vehicles/" + o.vehicle + ".yaml");
+
+  std::vector<int> pairs;
+  if (o.pair == "all") {
+    for (size_t k = 0; k < task.pairs.size(); ++k) pairs.push_back(static_cast<int>(k));
+  } else {
+    pairs.push_back(static_cast<int>(ParseNumber<unsigned long long>("--pair", o.pair, ParseU64)));
+  }
+
+  const std::string out_dir = o.out_dir.empty() ? "results/" + task.name : o.out_dir;
+  std::error_code ec;
+  std::filesystem::create_directories(out_dir, ec);
+  if (ec) throw vb::InputError(out_dir, 0, "--out", "cannot create directory: " + ec.message());
+
+  vb::runner::EpisodeRules rules;
+  rules.time_limit_s = o.time_limit_s;
+  rules.trajectory_every_n_steps = o.traj_every;
+  std::vector<vb::runner::TrialResult> results;
+  int counts[5] = {0, 0, 0, 0, 0};
+  for (int k : pairs) {
+    vb::runner::TrialSpec spec;
+    spec.pair_index = k;
+    spec.seed = o.seed;
+    spec.system = o.system;
+    spec.vehicle = o.vehicle;
+    vb::runner::TrialResult r = vb::runner::RunTrial(task, params, spec, rules);
+    const std::string stem = out_dir + "/" + vb::io::TrialFileStem(r);
+    vb::io::WriteTrialJson(r, stem + ".json", vb::io::MakeProvenance(task, spec));
+    vb::io::WriteTrajectoryCsv(r, stem + "_traj.csv");
+    ++counts[static_cast<int>(r.status)];
+    if (!o.quiet) {
+      std::printf("%s pair %d: %-9s t = %6.2f s  goal distance %6.2f m  RTF %.1f%s%s\n",
+                  task.name.c_str(), k, std::string(TrialStatusName(r.status)).c_str(),
+                  r.sim_time_s, r.final_goal_distance_m, r.real_time_factor,
+                  r.status == vb::runner::TrialStatus::kSimError ? "  " : "",
+                  r.status == vb::runner::TrialStatus::kSimError ? r.message.c_str() : "");
+      std::fflush(stdout);
+    }
+    results.push_back(std::move(r));
+  }
+  vb::io::WriteSummaryCsv(results, out_dir + "/summary.csv");
+
+  const double n = std::max<double>(1.0, static_cast<double>(results.size()));
+  std::printf("%zu trials: success %d (%.0f%%), rollover %d (%.0f%%), stuck %d (%.0f%%), "
+              "timeout %d (%.0f%%), sim_error %d (%.0f%%); results in %s\n",
+              results.size(), counts[0], 100.0 * counts[0] / n, counts[1], 100.0 * counts[1] / n,
+              counts[2], 100.0 * counts[2] / n, counts[3], 100.0 * counts[3] / n, counts[4],
+              100.0 * counts[4] / n, out_dir.c_str());
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    const Options options = ParseArgs(argc, argv);
+    if (options.help) {
+      std::fputs(kUsage, stdout);
+      return 0;
+    }
+    return Run(options);
+  } catch (const vb::InputError& e) {
+    std::fprintf(stderr, "vb_run: error: %s\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "vb_run: internal error: %s\n", e.what());
+    return 1;
+  }
+}
