@@ -105,25 +105,24 @@ TEST(VehicleDrive, AcceleratesHoldsSpeedAndStops) {
   EXPECT_LT(d, 3.0);
 }
 
-TEST(VehicleDrive, FullThrottleFollowsEngineMap) {
-  Sim sim(test::PlaneTask(), StartPose(-60, 0, 0.05));
+TEST(VehicleDrive, FullThrottleMatchesChronoAcceleration) {
+  // Chrono HMMWV (reference_chrono_runs.md), throttle applied at t = 0.5 s:
+  // 4.1 m/s at 1 s, 11.0 at 2 s, 16.3 at 3 s, 20.5 at 4 s, 23.4 at 5 s.
+  const double chrono_t[] = {2.0, 3.0, 4.0, 5.0};
+  const double chrono_v[] = {11.0, 16.3, 20.5, 23.4};
+  Sim sim(test::PlaneTask(256.0), StartPose(-120, 0, 0.02));
   sim.Run(0.5, {});
   vehicles::DriverInputs in;
   in.throttle = 1.0;
-  std::printf("t  v  gear\n");
-  double v2 = 0, v5 = 0;
-  for (int k = 1; k <= 5; ++k) {
-    sim.Run(1.0, in);
+  for (int k = 0; k < 4; ++k) {
+    sim.Run(chrono_t[k] - sim.t, in);
     const double v = sim.vehicle->state().forward_speed_mps;
-    std::printf("%.1f %.2f %d\n", sim.t, v, sim.vehicle->state().gear);
-    if (k == 2) v2 = v;
-    if (k == 5) v5 = v;
+    std::printf("t=%.1f s: v=%.2f m/s (Chrono %.1f), gear %d\n", sim.t, v, chrono_v[k],
+                sim.vehicle->state().gear);
+    // 10 %: same engine map and gears; differences come from the launch (no wheel slip model of
+    // Chrono's NSC contact) and the shift instants
+    EXPECT_NEAR(v, chrono_v[k], 0.10 * chrono_v[k]);
   }
-  // Chrono HMMWV reference (reference_chrono_runs.md): 11.0 m/s at 2 s, 23.4 m/s at 5 s after
-  // throttle at 0.5 s. Ours starts at 0.5 s too: compare at equal times after throttle.
-  std::printf("v(2.5 s)=%.2f v(5.5 s)=%.2f\n", v2, v5);
-  EXPECT_GT(v2, 8.0);
-  EXPECT_GT(v5, 18.0);
 }
 
 TEST(VehicleDrive, FullLockTurningRadiusMatchesChrono) {
