@@ -236,7 +236,11 @@ TrialResult RunTrial(const terrain::TaskSpec& task, const vehicles::VehicleParam
 
   RunningStats roll, pitch, abs_roll, abs_pitch, throttle, steering, abs_steering;
   PositionWindow window(window_steps);
-  std::vector<int> prev_contacts, contacts;
+  // Step of the last touch per obstacle (rocks first, then trees); a touch starts a new contact
+  // event only after kContactGapS out of contact, so a wheel bouncing on a rock face counts once.
+  constexpr double kContactGapS = 0.5;
+  const long contact_gap_steps = std::lround(kContactGapS / rules.step_s);
+  std::vector<long> last_touch_step(task.rocks.size() + task.trees.size(), -contact_gap_steps - 1);
   result.trajectory.reserve(static_cast<size_t>(max_steps / every) + 2);
 
   vehicles::DriverInputs inputs;
@@ -302,19 +306,16 @@ TrialResult RunTrial(const terrain::TaskSpec& task, const vehicles::VehicleParam
       last_xy = xy;
       window.Push(xy);
 
-      // Contact events: an obstacle touched now that was not touched in the previous step.
-      contacts.clear();
+      // Contact events with rocks and trees.
       for (const engine::ObstacleContact& c : world.ObstacleContacts()) {
-        if (c.body == vehicle.body()) contacts.push_back(c.obstacle_tag);
+        if (c.body != vehicle.body()) continue;
+        const size_t index = c.obstacle_tag >= terrain::kTreeTagOffset
+                                 ? task.rocks.size() + (c.obstacle_tag - terrain::kTreeTagOffset)
+                                 : static_cast<size_t>(c.obstacle_tag);
+        if (index >= last_touch_step.size()) continue;
+        if (k - last_touch_step[index] > contact_gap_steps) ++result.obstacle_contacts;
+        last_touch_step[index] = k;
       }
-      std::sort(contacts.begin(), contacts.end());
-      contacts.erase(std::unique(contacts.begin(), contacts.end()), contacts.end());
-      for (int tag : contacts) {
-        if (!std::binary_search(prev_contacts.begin(), prev_contacts.end(), tag)) {
-          ++result.obstacle_contacts;
-        }
-      }
-      std::swap(prev_contacts, contacts);
 
       if (k % every == 0) result.trajectory.push_back(MakeSample(t, s, inputs));
 

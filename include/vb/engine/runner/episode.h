@@ -68,7 +68,7 @@ struct TrialResult {
   double traversal_time_s = -1.0;      // time to goal for successes, -1 otherwise
   double final_goal_distance_m = 0.0;
   double path_length_m = 0.0;          // driven planar distance
-  int obstacle_contacts = 0;           // number of distinct contact events with rocks/trees
+  int obstacle_contacts = 0;           // contact events with rocks/trees (re-touch within 0.5 s: same event)
   SignalStats roll_deg, pitch_deg, abs_roll_deg, abs_pitch_deg;
   SignalStats throttle, steering, abs_steering;
   double wall_time_s = 0.0;
