@@ -144,5 +144,30 @@ TEST(VehicleDrive, FullLockTurningRadiusMatchesChrono) {
   EXPECT_NEAR(radius, 9.5, 0.95);
 }
 
+// Static friction holds (architecture §2): braked on a slope below atan(mu), no creep; on a side
+// slope, no drift. A regularised Coulomb law would slide slowly here.
+TEST(VehicleDrive, BrakedVehicleHoldsOnSlopes) {
+  const double grade = std::tan(20.0 * kPi / 180.0);  // well below atan(0.9) = 42 deg
+  const double side = std::tan(15.0 * kPi / 180.0);
+  for (int case_i = 0; case_i < 2; ++case_i) {
+    const double sx = case_i == 0 ? grade : 0.0;
+    const double sy = case_i == 0 ? 0.0 : side;
+    Pose pose;
+    pose.position = Vec3(0, 0, 0.467 + 0.3);
+    pose.rotation = Quat(Eigen::AngleAxisd(-std::atan(sx), Vec3::UnitY()) *
+                         Eigen::AngleAxisd(std::atan(sy), Vec3::UnitX()));
+    Sim sim(test::PlaneTask(128.0, sx, sy), pose);
+    vehicles::DriverInputs brake;
+    brake.braking = 1.0;
+    sim.Run(3.0, brake);  // settle
+    const Vec3 p0 = sim.vehicle->state().pose_W.position;
+    sim.Run(10.0, brake);
+    const double drift = (sim.vehicle->state().pose_W.position - p0).norm();
+    std::printf("%s: drift over 10 s braked = %.3g m\n", case_i == 0 ? "20 deg grade" : "15 deg side",
+                drift);
+    EXPECT_LT(drift, 0.005);
+  }
+}
+
 }  // namespace
 }  // namespace vb
