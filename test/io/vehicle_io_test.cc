@@ -12,6 +12,8 @@
 
 #include <gtest/gtest.h>
 
+#include "support/input_error.h"
+
 #include "vb/engine/error.h"
 
 namespace vb::io {
@@ -129,20 +131,7 @@ class VehicleIoTest : public ::testing::Test {
   void ExpectError(const std::string& text, int line, const std::string& key,
                    const std::string& what) {
     const std::string file = WriteText("vehicle.yaml", text);
-    try {
-      LoadVehicle(file);
-      ADD_FAILURE() << "no error; expected one at line " << line << " key " << key;
-    } catch (const InputError& e) {
-      const std::string msg = e.what();
-      EXPECT_EQ(e.file(), file);
-      EXPECT_EQ(e.line(), line) << msg;
-      EXPECT_EQ(e.key(), key) << msg;
-      EXPECT_NE(msg.find(file + ":" + std::to_string(line) + ":"), std::string::npos) << msg;
-      if (!key.empty()) {
-        EXPECT_NE(msg.find("key '" + key + "'"), std::string::npos) << msg;
-      }
-      EXPECT_NE(msg.find(what), std::string::npos) << msg;
-    }
+    test::ExpectInputError([&] { LoadVehicle(file); }, file, line, key, what);
   }
 
   std::string dir_;
