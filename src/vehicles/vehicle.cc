@@ -194,9 +194,31 @@ void Vehicle::Synchronize(double dt) {
     world_->AddJointForce(body_, c.wheel_link, in_->wheel_torques[i]);
     world_->SetJointVelocityMotor(body_, c.wheel_link, 0.0, inputs_.braking * axle.brake_torque_nm);
 
-    // wheel-ground contact
+    // wheel-ground contact: the soil first (if it claims this wheel), else the rigid tire
     const Pose wheel = world_->LinkPose(body_, c.wheel_link);
     const Vec3 axis_W = wheel.rotation * Vec3::UnitY();
+    WheelState& ws = state_.wheels[i];
+    if (soil_ != nullptr) {
+      soil::WheelSoilInput in;
+      in.wheel_id = static_cast<int>(i);
+      in.center_W = wheel.position;
+      in.axis_W = axis_W;
+      in.velocity_W = world_->LinkPointVelocity(body_, c.wheel_link, wheel.position);
+      in.angular_velocity_W = world_->LinkAngularVelocity(body_, c.wheel_link);
+      in.radius_m = params_.wheel.radius_m;
+      in.width_m = params_.wheel.width_m;
+      const soil::WheelSoilOutput out = soil_->WheelContact(in, dt);
+      if (out.on_soil) {
+        world_->ApplyLinkForce(body_, c.wheel_link, out.force_W, wheel.position);
+        world_->ApplyLinkTorque(body_, c.wheel_link, out.torque_W);
+        c.bristle = BristleState();
+        ws.in_contact = out.normal_force_n > 0.0;
+        ws.surface = out.surface;
+        ws.normal_force_n = out.normal_force_n;
+        ws.sinkage_m = out.sinkage_m;
+        continue;
+      }
+    }
     const ContactGeometry geo =
         FindWheelContact(terrain_, wheel.position, axis_W, params_.wheel.radius_m);
     Vec3 v_point = Vec3::Zero();
@@ -206,7 +228,6 @@ void Vehicle::Synchronize(double dt) {
     const ContactForce f = ComputeContactForce(tire, geo, v_point, dt, &c.bristle);
     if (geo.in_contact) world_->ApplyLinkForce(body_, c.wheel_link, f.force_W, geo.point_W);
 
-    WheelState& ws = state_.wheels[i];
     ws.in_contact = geo.in_contact && f.normal_force_n > 0.0;
     ws.surface = geo.surface;
     ws.normal_force_n = f.normal_force_n;

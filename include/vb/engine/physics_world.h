@@ -88,6 +88,8 @@ class PhysicsWorld {
   // Forces for the next Step only (cleared after it). World-frame force applied at a world point.
   void ApplyLinkForce(MultiBodyId mb, int link, const Vec3& force_W, const Vec3& point_W);
   void ApplyBaseForce(MultiBodyId mb, const Vec3& force_W, const Vec3& point_W);
+  // World-frame pure torque on a link, for the next Step only.
+  void ApplyLinkTorque(MultiBodyId mb, int link, const Vec3& torque_W);
   // Generalised joint force (N for prismatic, N·m for revolute), for the next Step only.
   void AddJointForce(MultiBodyId mb, int link, double force);
   // Implicit joint motors, solved inside the constraint solver, so they hold static loads without
@@ -103,6 +105,7 @@ class PhysicsWorld {
   Vec3 BaseAngularVelocity(MultiBodyId mb) const; // world frame
   Pose LinkPose(MultiBodyId mb, int link) const;  // COM frame of the link
   Vec3 LinkPointVelocity(MultiBodyId mb, int link, const Vec3& point_W) const;
+  Vec3 LinkAngularVelocity(MultiBodyId mb, int link) const;  // world frame
   double JointPosition(MultiBodyId mb, int link) const;
   double JointVelocity(MultiBodyId mb, int link) const;
 

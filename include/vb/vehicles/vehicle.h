@@ -8,6 +8,7 @@
 
 #include "vb/engine/physics_world.h"
 #include "vb/engine/types.h"
+#include "vb/soil/soil_contact.h"
 #include "vb/terrain/surface_class.h"
 #include "vb/terrain/terrain.h"
 #include "vb/vehicles/vehicle_params.h"
@@ -51,6 +52,10 @@ class Vehicle {
           engine::PhysicsWorld* world);
   ~Vehicle();
 
+  // Deformable ground (nullable, not owned, must outlive the vehicle). Wheels the soil claims get
+  // the soil's force and torque; all others use the vehicle's tire model on the rigid terrain.
+  void SetSoil(soil::SoilContact* soil) { soil_ = soil; }
+
   void SetInputs(const DriverInputs& inputs);
   // Computes and applies this step's forces (call right before world.Step(dt)).
   void Synchronize(double dt);
@@ -67,6 +72,7 @@ class Vehicle {
   VehicleParams params_;
   const terrain::Terrain& terrain_;
   engine::PhysicsWorld* world_;
+  soil::SoilContact* soil_ = nullptr;
   engine::MultiBodyId body_ = -1;
   DriverInputs inputs_;
   VehicleState state_;

@@ -278,6 +278,10 @@ void PhysicsWorld::ApplyLinkForce(MultiBodyId id, int link, const Vec3& force_W,
   mb->addLinkTorque(link, (ToBt(point_W) - com).cross(ToBt(force_W)));
 }
 
+void PhysicsWorld::ApplyLinkTorque(MultiBodyId id, int link, const Vec3& torque_W) {
+  impl_->Get(id).mb->addLinkTorque(link, ToBt(torque_W));
+}
+
 void PhysicsWorld::ApplyBaseForce(MultiBodyId id, const Vec3& force_W, const Vec3& point_W) {
   btMultiBody* mb = impl_->Get(id).mb.get();
   mb->addBaseForce(ToBt(force_W));
@@ -339,6 +343,12 @@ Vec3 PhysicsWorld::LinkPointVelocity(MultiBodyId id, int link, const Vec3& point
   const btVector3 r_L = b.mb->worldPosToLocal(link, ToBt(point_W));
   const btVector3 v_L = b.vel[link + 1] + b.omega[link + 1].cross(r_L);
   return FromBt(b.mb->localDirToWorld(link, v_L));
+}
+
+Vec3 PhysicsWorld::LinkAngularVelocity(MultiBodyId id, int link) const {
+  const Impl::Body& b = impl_->Get(id);
+  impl_->RefreshVelocities(b);
+  return FromBt(b.mb->localDirToWorld(link, b.omega[link + 1]));
 }
 
 double PhysicsWorld::JointPosition(MultiBodyId id, int link) const {
