@@ -34,7 +34,8 @@ int main() {
     for (int k = 0; k < vb::terrain::kBenchmarkEnvironments; ++k) {
       const vb::terrain::GeneratorOptions o = vb::terrain::BenchmarkEnvironment(k);
       if (o.elevation != ref.level) continue;
-      const ElevationStats s = vb::terrain::ComputeElevationStats(vb::terrain::GenerateElevation(o), 1.0);
+      const ElevationStats s =
+          vb::terrain::ComputeElevationStats(vb::terrain::GenerateElevation(o), 1.0);
       mean.std_m += s.std_m;
       mean.mean_slope_deg += s.mean_slope_deg;
       mean.p95_slope_deg += s.p95_slope_deg;

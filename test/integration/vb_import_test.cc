@@ -60,9 +60,10 @@ TEST_F(ToolsTest, ImportedOriginalRigidWorldRunsInVbRun) {
   if (!fs::exists(kSamples + "/config42_low.yaml")) {
     GTEST_SKIP() << "original Verti-Bench samples not found in " << kSamples;
   }
-  const Outcome imp = RunCommand(kBin + "/vb_import --config " + kSamples + "/config42_low.yaml --world " +
-                          kSamples + "/world42.bmp --labels " + kSamples +
-                          "/labels42_low.npy --out " + (dir_ / "tasks").string());
+  const Outcome imp = RunCommand(kBin + "/vb_import --config " + kSamples +
+                                 "/config42_low.yaml --world " + kSamples +
+                                 "/world42.bmp --labels " + kSamples + "/labels42_low.npy --out " +
+                                 (dir_ / "tasks").string());
   ASSERT_EQ(imp.exit_code, 0) << imp.output;
   EXPECT_NE(imp.output.find("labels checked"), std::string::npos) << imp.output;
   const fs::path task = dir_ / "tasks" / "config42_low.yaml";
@@ -76,13 +77,15 @@ TEST_F(ToolsTest, ImportedOriginalRigidWorldRunsInVbRun) {
 
 TEST_F(ToolsTest, ImportBadInputsExitWithCodeTwo) {
   EXPECT_EQ(RunCommand(kBin + "/vb_import").exit_code, 2);
-  EXPECT_EQ(RunCommand(kBin + "/vb_import --config nope.yaml --world nope.bmp --out " + dir_.string())
-                .exit_code,
-            2);
+  EXPECT_EQ(
+      RunCommand(kBin + "/vb_import --config nope.yaml --world nope.bmp --out " + dir_.string())
+          .exit_code,
+      2);
   if (!fs::exists(kSamples + "/config42_low.yaml")) return;
   // the obstacle map is not a world image
-  const Outcome o = RunCommand(kBin + "/vb_import --config " + kSamples + "/config42_low.yaml --world " +
-                        kSamples + "/obs42_low.bmp --out " + dir_.string());
+  const Outcome o = RunCommand(kBin + "/vb_import --config " + kSamples +
+                               "/config42_low.yaml --world " + kSamples +
+                               "/obs42_low.bmp --out " + dir_.string());
   EXPECT_EQ(o.exit_code, 2) << o.output;
   EXPECT_NE(o.output.find("obs42_low.bmp: contains pixel value 255"), std::string::npos)
       << o.output;

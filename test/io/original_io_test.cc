@@ -29,10 +29,14 @@ const std::string kSamples = VB_SHARED_DIR "/verti_bench_samples";
 struct Sample {
   int world;
   const char* level;
-  std::string Config() const { return kSamples + "/config" + std::to_string(world) + "_" + level + ".yaml"; }
-  std::string World() const { return kSamples + "/world" + std::to_string(world) + ".bmp"; }
-  std::string Labels() const { return kSamples + "/labels" + std::to_string(world) + "_" + level + ".npy"; }
-  std::string Obs() const { return kSamples + "/obs" + std::to_string(world) + "_" + level + ".bmp"; }
+  std::string File(const std::string& stem, const std::string& ext, bool with_level) const {
+    const std::string suffix = with_level ? "_" + std::string(level) : "";
+    return kSamples + "/" + stem + std::to_string(world) + suffix + ext;
+  }
+  std::string Config() const { return File("config", ".yaml", true); }
+  std::string World() const { return File("world", ".bmp", false); }
+  std::string Labels() const { return File("labels", ".npy", true); }
+  std::string Obs() const { return File("obs", ".bmp", true); }
 };
 const Sample kAll[] = {{1, "high"}, {42, "low"}, {62, "mid"}, {66, "mid"}, {94, "low"}};
 

@@ -273,8 +273,8 @@ std::vector<int32_t> ReadNpyInt32(const std::string& path, int* rows, int* cols)
   const size_t data_start = header_start + header_len;
   const size_t count = static_cast<size_t>(r) * c;
   if (bytes.size() != data_start + 4 * count) {
-    fail("data size " + std::to_string(bytes.size() - data_start) + " bytes does not match shape (" +
-         std::to_string(r) + ", " + std::to_string(c) + ")");
+    fail("data size " + std::to_string(bytes.size() - data_start) +
+         " bytes does not match shape (" + std::to_string(r) + ", " + std::to_string(c) + ")");
   }
   std::vector<int32_t> out(count);
   for (size_t i = 0; i < count; ++i) {

@@ -115,8 +115,8 @@ void WriteWorldPicture(const terrain::TaskSpec& task, const std::string& path) {
   // legend: the classes present
   int x = 4;
   for (terrain::SurfaceClass c : terrain::ClassesPresent(task.patches)) {
-    cv::rectangle(img, cv::Rect(x, h + 12, 16, 16), cv::Scalar(kClassColour[static_cast<size_t>(c)]),
-                  cv::FILLED);
+    cv::rectangle(img, cv::Rect(x, h + 12, 16, 16),
+                  cv::Scalar(kClassColour[static_cast<size_t>(c)]), cv::FILLED);
     cv::rectangle(img, cv::Rect(x, h + 12, 16, 16), cv::Scalar(0, 0, 0), 1);
     const std::string name(terrain::SurfaceClassName(c));
     cv::putText(img, name, cv::Point(x + 20, h + 26), cv::FONT_HERSHEY_SIMPLEX, 0.45,

@@ -23,9 +23,10 @@ using vb::terrain::ElevationLevel;
 using vb::terrain::ObstacleDensity;
 using vb::terrain::TerrainType;
 
-constexpr const char* kUsage = R"(usage: vb_gen --env K --out TASKDIR [--image-dir IMGDIR] [--name NAME] [--scale F]
+constexpr const char* kUsage = R"(usage:
+       vb_gen --env K --out TASKDIR [--image-dir IMGDIR] [--name NAME] [--scale F] [--picture FILE]
        vb_gen --seed S --name NAME --elevation LEVEL --terrain TYPE --density DENSITY
-              --out TASKDIR [--image-dir IMGDIR] [--scale F]
+              --out TASKDIR [--image-dir IMGDIR] [--scale F] [--picture FILE]
 
 Generates one environment (docs/generator.md): a rugged 129 x 129 height field at 1 m (128 m x
 128 m world) calibrated per elevation level against the original Verti-Bench worlds, 16 x 16

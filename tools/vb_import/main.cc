@@ -17,8 +17,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr const char* kUsage = R"(usage: vb_import --config CONFIG.yaml --world WORLD.bmp [--labels LABELS.npy]
-                 --out TASKDIR [--image-dir IMGDIR] [--name NAME] [--scale F] [--picture FILE]
+constexpr const char* kUsage = R"(usage: vb_import --config CONFIG.yaml --world WORLD.bmp
+                 [--labels LABELS.npy] --out TASKDIR [--image-dir IMGDIR] [--name NAME]
+                 [--scale F] [--picture FILE]
 
 Converts an original Verti-Bench world into a vb task that reproduces its geometry: the 128 m x
 128 m terrain from the 129 x 129 world image (h = min_height + p/255 (max_height - min_height)),

@@ -20,8 +20,8 @@ inline Vec3 RockBoxSize(const TaskSpec& task, const RockSpec& rock) {
 inline Vec3 TreeBoxSize(const TaskSpec& task) { return TreeBoxSize() * task.scale; }
 
 // Height of an obstacle's bottom face so that it rests on the ground: the lowest terrain height
-// under its footprint (a square of full side footprint_m centred at (x, y), sampled on a 9 x 9
-// grid). The box then touches the ground at its lowest point and nowhere hangs above it.
+// under its footprint (a square of full side footprint_m centred at (x, y), axis-aligned as the
+// boxes are). The box then touches the ground at its lowest point and nowhere hangs above it.
 double ObstacleBaseHeight(const Terrain& terrain, double x_m, double y_m, double footprint_m);
 
 void AddTerrainToPhysics(const TaskSpec& task, const Terrain& terrain, engine::PhysicsWorld* world);
