@@ -18,7 +18,7 @@
 namespace vb::io {
 namespace {
 
-constexpr int kPixelsPerCell = 4;
+constexpr int kPixelsPerCell = 3;
 constexpr int kLegendHeight = 40;
 
 // BGR colours per class id (clay ... snow).
