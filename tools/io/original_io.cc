@@ -3,7 +3,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
-#include <map>
+#include <optional>
 #include <sstream>
 #include <string>
 
@@ -134,8 +134,10 @@ void ReadTextures(const StrictNode& node, OriginalConfig* config) {
   }
 }
 
-OriginalConfig ReadConfig(const std::string& path, StrictNode* length_node,
-                          StrictNode* width_node) {
+// length_node / width_node receive the config's half-size nodes, for messages about a config
+// that does not match its image.
+OriginalConfig ReadConfig(const std::string& path, std::optional<StrictNode>* length_node,
+                          std::optional<StrictNode>* width_node) {
   const StrictNode root = LoadYamlFile(path);
   const StrictMap top = root.AsMap({"terrain", "terrain_type", "obstacles_flag",
                                     "obstacle_density", "obstacles", "positions", "textures"});
@@ -144,10 +146,10 @@ OriginalConfig ReadConfig(const std::string& path, StrictNode* length_node,
       {"difficulty", "is_flat", "length", "width", "min_height", "max_height"});
   c.difficulty = ReadDifficulty(terrain_map.Required("difficulty"));
   c.is_flat = terrain_map.Required("is_flat").AsBool();
-  *length_node = terrain_map.Required("length");
-  *width_node = terrain_map.Required("width");
-  c.half_length_m = length_node->AsPositive();
-  c.half_width_m = width_node->AsPositive();
+  length_node->emplace(terrain_map.Required("length"));
+  width_node->emplace(terrain_map.Required("width"));
+  c.half_length_m = (*length_node)->AsPositive();
+  c.half_width_m = (*width_node)->AsPositive();
   c.min_height_m = terrain_map.Required("min_height").AsDouble();
   const StrictNode max_node = terrain_map.Required("max_height");
   c.max_height_m = max_node.AsDouble();
@@ -288,8 +290,8 @@ std::vector<int32_t> ReadNpyInt32(const std::string& path, int* rows, int* cols)
 OriginalWorldFiles LoadOriginalWorld(const std::string& config_path, const std::string& world_path,
                                      const std::string& labels_path) {
   OriginalWorldFiles files;
-  StrictNode length_node(YAML::Node(), nullptr, "", 0);
-  StrictNode width_node(YAML::Node(), nullptr, "", 0);
+  std::optional<StrictNode> length_node;
+  std::optional<StrictNode> width_node;
   files.config = ReadConfig(config_path, &length_node, &width_node);
   files.world = ReadGrayImage(world_path);
   // the original requires exactly 129 x 129 (§2.1)
@@ -301,12 +303,12 @@ OriginalWorldFiles LoadOriginalWorld(const std::string& config_path, const std::
   }
   // config and image must describe the same grid: 2 * half size = pixels (1 px per metre)
   if (2.0 * files.config.half_length_m != files.world.cols) {
-    length_node.Fail("length " + Fmt(files.config.half_length_m) + " (half size) implies " +
+    length_node->Fail("length " + Fmt(files.config.half_length_m) + " (half size) implies " +
                      Fmt(2.0 * files.config.half_length_m) + " pixels, but the world image '" +
                      world_path + "' is " + std::to_string(files.world.cols) + " wide");
   }
   if (2.0 * files.config.half_width_m != files.world.rows) {
-    width_node.Fail("width " + Fmt(files.config.half_width_m) + " (half size) implies " +
+    width_node->Fail("width " + Fmt(files.config.half_width_m) + " (half size) implies " +
                     Fmt(2.0 * files.config.half_width_m) + " pixels, but the world image '" +
                     world_path + "' is " + std::to_string(files.world.rows) + " high");
   }
