@@ -38,6 +38,23 @@ const GridMap& GroundTruthMaps::World(MapLayer layer) const {
   return elevation_;
 }
 
+GridMap GroundTruthMaps::Resampled(MapLayer layer, double resolution_m) const {
+  VB_DEMAND(resolution_m > 0.0);
+  GridMap out;
+  out.resolution_m = resolution_m;
+  out.cols = static_cast<int>(std::floor(terrain_.size_x_m() / resolution_m + 1e-9)) + 1;
+  out.rows = static_cast<int>(std::floor(terrain_.size_y_m() / resolution_m + 1e-9)) + 1;
+  out.values.resize(static_cast<size_t>(out.rows) * out.cols);
+  for (int r = 0; r < out.rows; ++r) {
+    for (int c = 0; c < out.cols; ++c) {
+      const Vec2 p(-0.5 * terrain_.size_x_m() + c * resolution_m,
+                   0.5 * terrain_.size_y_m() - r * resolution_m);
+      out.values[static_cast<size_t>(r) * out.cols + c] = Sample(layer, p);
+    }
+  }
+  return out;
+}
+
 double GroundTruthMaps::Sample(MapLayer layer, const Vec2& p_m) const {
   switch (layer) {
     case MapLayer::kElevation:

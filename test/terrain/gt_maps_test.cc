@@ -34,6 +34,24 @@ TEST(GtMapsTest, WorldGridsAreTheTaskGrids) {
   EXPECT_EQ(occupied, 81);  // (5 + 2 * 2)^2
 }
 
+TEST(GtMapsTest, ResampledWorldGridAtTenCentimetres) {
+  const TaskSpec task = test::PlaneTask(64.0, 0.1, -0.05);
+  const GroundTruthMaps maps(task);
+  const GridMap fine = maps.Resampled(MapLayer::kElevation, 0.1);
+  ASSERT_EQ(fine.rows, 641);
+  ASSERT_EQ(fine.cols, 641);
+  for (int r = 0; r < fine.rows; r += 37) {
+    for (int c = 0; c < fine.cols; c += 41) {
+      const double x = -32.0 + 0.1 * c;
+      const double y = 32.0 - 0.1 * r;
+      EXPECT_NEAR(fine.At(r, c), 0.1 * x - 0.05 * y, 1e-9);
+    }
+  }
+  // at the grid's own resolution it is the world grid
+  EXPECT_EQ(maps.Resampled(MapLayer::kSemantics, 1.0).values,
+            maps.World(MapLayer::kSemantics).values);
+}
+
 TEST(GtMapsTest, ElevationCropFollowsYaw) {
   // h = 0.2 x: rises to the east
   const TaskSpec task = test::PlaneTask(64.0, 0.2, 0.0);

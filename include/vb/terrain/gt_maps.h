@@ -50,6 +50,11 @@ class GroundTruthMaps {
   // Whole-world grid of a layer (height-grid resolution).
   const GridMap& World(MapLayer layer) const;
 
+  // Whole-world grid of a layer at another resolution (e.g. 0.1 m, like the original's 1291 x 1291
+  // high-res height map): cell (r, c) at x = -size_x/2 + c * res, y = size_y/2 - r * res, with
+  // floor(size / res + 1e-9) + 1 cells per axis.
+  GridMap Resampled(MapLayer layer, double resolution_m) const;
+
   // Value of a layer at a world point (the sampling rules above).
   double Sample(MapLayer layer, const Vec2& p_m) const;
 
