@@ -1,6 +1,7 @@
 #include "io/original_io.h"
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <optional>
