@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdio>
 #include <cmath>
 #include <numeric>
+#include <string>
 #include <vector>
 
 #include "vb/engine/error.h"
@@ -25,7 +27,6 @@ constexpr double kObstacleBoundM = 58.0;       // obstacles inside +-58 m
 constexpr double kClearanceToPairsM = 12.0;    // > 12 m from all 20 start/goal points
 constexpr double kClearanceBetweenM = 10.0;    // > 10 m between obstacles
 constexpr int kPlacementAttempts = 500;        // per obstacle, as the original
-constexpr int kInflationCells = 4;             // planners' int(4 * sf) at sf = 1
 constexpr int kMaxPlacementRounds = 1000;
 constexpr double kClusterCentreMean = 7.5;     // mean and std of the 16x16 patch index grid
 constexpr double kClusterCentreStd = 4.6098;
@@ -386,7 +387,7 @@ bool PlaceObstacles(Rng* rng, double layout_scale, const std::vector<StartGoalPa
 
 // Plans every pair on the inflated obstacle grid; false if any pair is disconnected.
 bool PlanAllPairs(TaskSpec* task) {
-  const OccupancyGrid inflated = Inflate(RasterizeObstacles(*task), kInflationCells);
+  const OccupancyGrid inflated = Inflate(RasterizeObstacles(*task), PlannerInflationCells(*task));
   for (StartGoalPair& pair : task->pairs) {
     auto path = PlanPath(inflated, pair.start_m, pair.goal_m);
     if (!path) return false;
@@ -397,6 +398,32 @@ bool PlanAllPairs(TaskSpec* task) {
 
 }  // namespace
 
+GeneratorOptions BenchmarkEnvironment(int env_id) {
+  VB_DEMAND(env_id >= 0 && env_id < kBenchmarkEnvironments);
+  static constexpr ElevationLevel kLevels[3] = {ElevationLevel::kLow, ElevationLevel::kMid,
+                                                ElevationLevel::kHigh};
+  static constexpr ObstacleDensity kDensities[3] = {
+      ObstacleDensity::kSparse, ObstacleDensity::kMedium, ObstacleDensity::kDense};
+  GeneratorOptions o;
+  o.seed = static_cast<uint64_t>(env_id);
+  char name[16];
+  std::snprintf(name, sizeof(name), "env%03d", env_id);
+  o.name = name;
+  o.terrain = env_id < 60   ? TerrainType::kRigid
+              : env_id < 90 ? TerrainType::kDeformable
+                            : TerrainType::kMixed;
+  o.elevation = kLevels[env_id % 3];
+  o.density = kDensities[(env_id / 3) % 3];
+  return o;
+}
+
+HeightGrid GenerateElevation(const GeneratorOptions& options) {
+  VB_DEMAND(options.grid_vertices >= 65);
+  Rng master(options.seed);
+  Rng height_rng(master.NextU64());  // first stream, as in GenerateTask
+  return GenerateHeights(&height_rng, options.grid_vertices, options.elevation);
+}
+
 TaskSpec GenerateTask(const GeneratorOptions& options) {
   VB_DEMAND(options.grid_vertices >= 65);
   const int n = options.grid_vertices;
@@ -404,6 +431,7 @@ TaskSpec GenerateTask(const GeneratorOptions& options) {
   const double layout_scale = world_m / kReferenceWorldM;
 
   // one independent stream per stage, so changing one stage leaves the others' draws intact
+  // (GenerateElevation relies on the height stream being the first)
   Rng master(options.seed);
   Rng height_rng(master.NextU64());
   Rng semantics_rng(master.NextU64());
@@ -421,7 +449,8 @@ TaskSpec GenerateTask(const GeneratorOptions& options) {
   const std::vector<double>& h = task.heights.heights_m;
   task.max_height_m = *std::max_element(h.begin(), h.end());
   task.patches = GenerateSemantics(&semantics_rng, options.terrain);
-  task.labels = {options.elevation, options.terrain, options.density};
+  task.labels = {options.elevation, options.terrain, options.density,
+                 ClassesPresent(task.patches)};
   task.pairs = CirclePairs(kPairRadiusM * layout_scale);
 
   int num_rocks = 0;

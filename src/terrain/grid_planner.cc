@@ -13,6 +13,8 @@ namespace {
 constexpr double kSqrt2 = 1.41421356237309504880;
 // Rock collision box side at scale 1 (RockBoxSize in terrain_physics.h), which sets the footprint.
 constexpr double kRockSideM = 4.4;
+// Planner inflation at world scale 1: 4 m, the original's int(4 * sf) cells at 1 m cells.
+constexpr double kInflationM = 4.0;
 
 // Octile distance: the exact cost of an obstacle-free 8-connected path with diagonal cost
 // sqrt(2), so the heuristic is admissible and consistent and A* returns an optimal path.
@@ -75,13 +77,21 @@ OccupancyGrid RasterizeObstacles(const TaskSpec& task) {
   for (const RockSpec& rock : task.rocks) {
     // side in cells truncated as the original (3, 4, 5 at 1 m); the square [c - w/2, c + w/2]
     // is then 3, 5, 5 cells wide
-    const int w = static_cast<int>(kRockSideM * rock.scale / grid.cell_m);
+    // (the tiny epsilon keeps a scaled world's footprint equal to the unscaled one when
+    // scale * 4.4 / cell_m is an integer up to rounding)
+    const int w = static_cast<int>(kRockSideM * rock.scale * task.scale / grid.cell_m + 1e-9);
     MarkSquare(&grid, grid.CellOf(Vec2(rock.x_m, rock.y_m)), w / 2);
   }
   for (const TreeSpec& tree : task.trees) {
     MarkSquare(&grid, grid.CellOf(Vec2(tree.x_m, tree.y_m)), 0);
   }
   return grid;
+}
+
+int PlannerInflationCells(const TaskSpec& task) {
+  VB_DEMAND(task.heights.cols >= 2);
+  const double cell_m = task.size_x_m / (task.heights.cols - 1);
+  return static_cast<int>(std::floor(kInflationM * task.scale / cell_m + 1e-9));
 }
 
 OccupancyGrid Inflate(const OccupancyGrid& grid, int radius_cells) {

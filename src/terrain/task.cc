@@ -1,5 +1,7 @@
 #include "vb/terrain/task.h"
 
+#include <array>
+
 namespace vb::terrain {
 
 std::string_view ElevationLevelName(ElevationLevel v) {
@@ -27,6 +29,16 @@ std::string_view ObstacleDensityName(ObstacleDensity v) {
     case ObstacleDensity::kDense: return "dense";
   }
   return "unknown";
+}
+
+std::vector<SurfaceClass> ClassesPresent(const PatchGrid& patches) {
+  std::array<bool, kNumSurfaceClasses> seen{};
+  for (SurfaceClass c : patches.classes) seen[static_cast<size_t>(c)] = true;
+  std::vector<SurfaceClass> out;
+  for (int k = 0; k < kNumSurfaceClasses; ++k) {
+    if (seen[static_cast<size_t>(k)]) out.push_back(static_cast<SurfaceClass>(k));
+  }
+  return out;
 }
 
 }  // namespace vb::terrain

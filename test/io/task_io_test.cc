@@ -102,6 +102,13 @@ std::string MakeBmp(int width, int height, const std::vector<uint8_t>& pixels, b
   return out;
 }
 
+std::string ReadAll(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
 terrain::HeightGrid MakeGrid(int rows, int cols, double min_h, double max_h) {
   terrain::HeightGrid grid;
   grid.rows = rows;
@@ -254,7 +261,7 @@ TEST_F(TaskIoTest, RoundTrip) {
   task.pairs[1].goal_m = Vec2(0.0, -48.25);
   task.pairs[1].path_m = {task.pairs[1].start_m, task.pairs[1].goal_m};
   task.labels = {terrain::ElevationLevel::kHigh, terrain::TerrainType::kDeformable,
-                 terrain::ObstacleDensity::kMedium};
+                 terrain::ObstacleDensity::kMedium, terrain::ClassesPresent(task.patches)};
 
   WriteHeightImage(task.heights, task.min_height_m, task.max_height_m, Path("env042.png"));
   SaveTask(task, Path("env042.yaml"));
@@ -297,6 +304,12 @@ TEST_F(TaskIoTest, RoundTrip) {
   EXPECT_EQ(back.labels.elevation, task.labels.elevation);
   EXPECT_EQ(back.labels.terrain, task.labels.terrain);
   EXPECT_EQ(back.labels.density, task.labels.density);
+  EXPECT_EQ(back.labels.classes,
+            (std::vector<SurfaceClass>{SurfaceClass::kConcrete, SurfaceClass::kGravel,
+                                       SurfaceClass::kWood, SurfaceClass::kSnow}));
+  // the saved file lists them, ascending by id
+  EXPECT_NE(ReadAll(Path("env042.yaml")).find("classes: [concrete, gravel, wood, snow]}"),
+            std::string::npos);
 
   // Saving the loaded task gives the same bytes (stable output), and writes leave no temp files.
   SaveTask(back, Path("again.yaml"));
@@ -412,6 +425,30 @@ TEST_F(TaskIoTest, ErrorUnknownClass) {
 TEST_F(TaskIoTest, ErrorUnknownLabel) {
   ExpectError(Edit("labels:", "labels: {elevation: mid, terrain: mixed, density: packed}"), 10,
               "labels.density", "unknown value 'packed' (valid: sparse, medium, dense)");
+}
+
+TEST_F(TaskIoTest, ClassesLabelIsDerivedOrChecked) {
+  // absent: derived from the patches
+  const TaskSpec task = LoadTask(WriteText("task.yaml", kTinyTask));
+  EXPECT_EQ(task.labels.classes,
+            (std::vector<SurfaceClass>{SurfaceClass::kClay, SurfaceClass::kDirt,
+                                       SurfaceClass::kGrass, SurfaceClass::kRock,
+                                       SurfaceClass::kMud, SurfaceClass::kSand}));
+  // present and right: accepted
+  const std::string good =
+      "labels: {elevation: mid, terrain: mixed, density: sparse, classes: [clay, dirt, grass, "
+      "rock, mud, sand]}";
+  EXPECT_EQ(LoadTask(WriteText("good.yaml", Edit("labels:", good))).labels.classes,
+            task.labels.classes);
+  // present and wrong (a class missing, or the wrong order): an error naming the right list
+  ExpectError(Edit("labels:",
+                   "labels: {elevation: mid, terrain: mixed, density: sparse, classes: [clay]}"),
+              10, "labels.classes",
+              "must list the classes present in semantics.classes, ascending by id: [clay, dirt, "
+              "grass, rock, mud, sand]");
+  ExpectError(Edit("labels:",
+                   "labels: {elevation: mid, terrain: mixed, density: sparse, classes: [lava]}"),
+              10, "labels.classes[0]", "unknown terrain class 'lava'");
 }
 
 TEST_F(TaskIoTest, ErrorFormatAndVersion) {

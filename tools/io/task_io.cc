@@ -5,6 +5,7 @@
 #include <cctype>
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -126,14 +127,42 @@ HeightGrid ReadHeights(const StrictNode& image_node, const TaskSpec& task) {
   return grid;
 }
 
-void ReadLabels(const StrictNode& node, TaskSpec& task) {
-  const StrictMap labels = node.AsMap({"elevation", "terrain", "density"});
+// Returns the labels.classes node (absent: a null node), checked after the semantics are read.
+std::optional<StrictNode> ReadLabels(const StrictNode& node, TaskSpec& task) {
+  const StrictMap labels = node.AsMap({"elevation", "terrain", "density", "classes"});
   task.labels.elevation =
       ParseLabel(labels.Required("elevation"), kElevations, &terrain::ElevationLevelName);
   task.labels.terrain =
       ParseLabel(labels.Required("terrain"), kTerrainTypes, &terrain::TerrainTypeName);
   task.labels.density =
       ParseLabel(labels.Required("density"), kDensities, &terrain::ObstacleDensityName);
+  if (!labels.Has("classes")) return std::nullopt;
+  return labels.Required("classes");
+}
+
+// labels.classes is derived data: when present it must name exactly the classes of the patch
+// grid, ascending by id (a mismatch means the file was edited inconsistently).
+void CheckClassesLabel(const std::optional<StrictNode>& node, TaskSpec& task) {
+  task.labels.classes = terrain::ClassesPresent(task.patches);
+  if (!node) return;
+  std::vector<SurfaceClass> listed;
+  for (const StrictNode& item : node->AsList(1)) {
+    const std::string name = item.AsString();
+    const std::optional<SurfaceClass> c = terrain::SurfaceClassFromName(name);
+    if (!c) {
+      item.Fail("unknown terrain class '" + name + "' (valid: " + terrain::SurfaceClassNames() +
+                ")");
+    }
+    listed.push_back(*c);
+  }
+  if (listed != task.labels.classes) {
+    std::string want;
+    for (SurfaceClass c : task.labels.classes) {
+      want += (want.empty() ? "" : ", ") + std::string(terrain::SurfaceClassName(c));
+    }
+    node->Fail("must list the classes present in semantics.classes, ascending by id: [" + want +
+               "]");
+  }
 }
 
 void ReadSemantics(const StrictNode& node, TaskSpec& task) {
@@ -271,8 +300,9 @@ terrain::TaskSpec LoadTask(const std::string& path) {
   if (task.name.empty()) name.Fail("name is empty");
   task.generator_seed = top.Required("generator_seed").AsUint64();
   const StrictNode image = ReadWorld(top.Required("world"), task);
-  ReadLabels(top.Required("labels"), task);
+  const std::optional<StrictNode> classes_label = ReadLabels(top.Required("labels"), task);
   ReadSemantics(top.Required("semantics"), task);
+  CheckClassesLabel(classes_label, task);
   ReadObstacles(top.Required("obstacles"), task);
   ReadPairs(top.Required("pairs"), task);
   // The image last: a task with a bad key fails fast without decoding a large image.
@@ -298,7 +328,16 @@ void SaveTask(const terrain::TaskSpec& task, const std::string& path) {
   out += "  height_range_m: " + Pair(task.min_height_m, task.max_height_m) + "\n";
   out += "labels: {elevation: " + std::string(terrain::ElevationLevelName(task.labels.elevation)) +
          ", terrain: " + std::string(terrain::TerrainTypeName(task.labels.terrain)) +
-         ", density: " + std::string(terrain::ObstacleDensityName(task.labels.density)) + "}\n";
+         ", density: " + std::string(terrain::ObstacleDensityName(task.labels.density)) +
+         ", classes: [";
+  {
+    // always derived from the patches, so a saved file is consistent by construction
+    std::string names;
+    for (SurfaceClass c : terrain::ClassesPresent(patches)) {
+      names += (names.empty() ? "" : ", ") + std::string(terrain::SurfaceClassName(c));
+    }
+    out += names + "]}\n";
+  }
 
   out += "semantics:\n";
   out += "  grid: [" + std::to_string(patches.rows) + ", " + std::to_string(patches.cols) + "]\n";

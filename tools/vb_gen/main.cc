@@ -1,4 +1,5 @@
 // vb_gen: generates one benchmark environment (task file + 16-bit height image) from a seed.
+// Thin: argument parsing over GenerateTask (src/terrain/generator.cc) and tools/io.
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
@@ -6,9 +7,14 @@
 #include <string>
 #include <string_view>
 
+#include <optional>
+#include <utility>
+
 #include "io/task_io.h"
+#include "io/world_picture.h"
 #include "vb/engine/error.h"
 #include "vb/terrain/generator.h"
+#include "vb/terrain/scale.h"
 
 namespace {
 
@@ -17,25 +23,34 @@ using vb::terrain::ElevationLevel;
 using vb::terrain::ObstacleDensity;
 using vb::terrain::TerrainType;
 
-constexpr const char* kUsage = R"(usage: vb_gen --seed S --name NAME --elevation LEVEL
-              --terrain TYPE --density DENSITY --out TASKDIR [--image-dir IMGDIR]
+constexpr const char* kUsage = R"(usage:
+       vb_gen --env K --out TASKDIR [--image-dir IMGDIR] [--name NAME] [--scale F] [--picture FILE]
+       vb_gen --seed S --name NAME --elevation LEVEL --terrain TYPE --density DENSITY
+              --out TASKDIR [--image-dir IMGDIR] [--scale F] [--picture FILE]
 
-Generates one environment of the benchmark with the first-version generator (vb_gen v0): a
-rugged 129 x 129 height field at 1 m (128 m x 128 m world), 16 x 16 semantics patches, rocks and
-trees placed with the original benchmark's rules, and the 10 start/goal pairs on the 60 m
-circle, each with a global path on the obstacle grid inflated by 4 cells. The same arguments
-always produce byte-identical files.
+Generates one environment (docs/generator.md): a rugged 129 x 129 height field at 1 m (128 m x
+128 m world) calibrated per elevation level against the original Verti-Bench worlds, 16 x 16
+semantics patches, rocks and trees placed with the original benchmark's rules, and the 10
+start/goal pairs on the 60 m circle, each with a global A* path on the obstacle grid inflated by
+4 m. The same arguments always produce byte-identical files.
 
-  --seed S           generator seed, an unsigned 64-bit integer (required)
-  --name NAME        environment name, e.g. env042; file stem of the outputs (required)
-  --elevation LEVEL  low | mid | high (required)
-  --terrain TYPE     rigid | deformable | mixed (required)
-  --density DENSITY  sparse | medium | dense: 10/20/40 rocks and 1/2/3 trees (required)
+  --env K            benchmark environment K in [0, 99]: seed K, name envKKK and the labels fixed
+                     by K (docs/generator.md); tasks/envKKK.yaml is exactly this output
+  --seed S           generator seed, an unsigned 64-bit integer
+  --name NAME        environment name, e.g. env042; file stem of the outputs
+  --elevation LEVEL  low | mid | high
+  --terrain TYPE     rigid | deformable | mixed
+  --density DENSITY  sparse | medium | dense: 10/20/40 rocks and 1/2/3 trees
+  --scale F          scale variant for smaller vehicles: every length times F (e.g. 1/6, 1/10,
+                     0.5; default 1); give a different --name or --out for the variant
   --out TASKDIR      directory of the task file TASKDIR/NAME.yaml (required; created if missing)
   --image-dir IMGDIR directory of the height image IMGDIR/NAME.png (default: TASKDIR/../data/
                      worlds); the task file refers to it by a path relative to TASKDIR
+  --picture FILE     also write a PNG picture of the world (height shading, semantics,
+                     obstacles, paths; docs/generator.md)
   --help             this text
 
+Without --env, --seed, --name, --elevation, --terrain and --density are all required.
 Prints the elevation statistics of the generated world (as reference_verti_bench.md §9).
 Exit codes: 0 success, 2 bad arguments or unwritable output, 1 other errors.
 )";
@@ -46,8 +61,11 @@ struct Options {
   bool have_name = false;
   vb::terrain::GeneratorOptions gen;
   bool have_elevation = false, have_terrain = false, have_density = false;
+  bool have_env = false;
+  double scale = 1.0;
   std::string out_dir;
   std::string image_dir;
+  std::string picture;
 };
 
 template <typename E, size_t N>
@@ -101,6 +119,26 @@ Options ParseArgs(int argc, char** argv) {
                                                  ObstacleDensity::kDense};
       o.gen.density = ParseChoice(a, value(), kAll, vb::terrain::ObstacleDensityName);
       o.have_density = true;
+    } else if (a == "--env") {
+      const std::string text = value();
+      char* end = nullptr;
+      const long k = std::strtol(text.c_str(), &end, 10);
+      if (text.empty() || *end != '\0' || k < 0 || k >= vb::terrain::kBenchmarkEnvironments) {
+        throw vb::InputError("", 0, a, "'" + text + "' is not an environment id in [0, " +
+                                           std::to_string(vb::terrain::kBenchmarkEnvironments - 1) +
+                                           "]");
+      }
+      const std::string name = o.gen.name;
+      o.gen = vb::terrain::BenchmarkEnvironment(static_cast<int>(k));
+      if (o.have_name) o.gen.name = name;
+      o.have_env = true;
+    } else if (a == "--scale") {
+      const std::string text = value();
+      const std::optional<double> f = vb::terrain::ParseScaleFactor(text);
+      if (!f) throw vb::InputError("", 0, a, "'" + text + "' is not a factor > 0 (e.g. 1/6, 0.1)");
+      o.scale = *f;
+    } else if (a == "--picture") {
+      o.picture = value();
     } else if (a == "--out") {
       o.out_dir = value();
     } else if (a == "--image-dir") {
@@ -110,11 +148,20 @@ Options ParseArgs(int argc, char** argv) {
     }
   }
   if (o.help) return o;
-  if (!o.have_seed) throw vb::InputError("", 0, "--seed", "required (see --help)");
-  if (!o.have_name) throw vb::InputError("", 0, "--name", "required (see --help)");
-  if (!o.have_elevation) throw vb::InputError("", 0, "--elevation", "required (see --help)");
-  if (!o.have_terrain) throw vb::InputError("", 0, "--terrain", "required (see --help)");
-  if (!o.have_density) throw vb::InputError("", 0, "--density", "required (see --help)");
+  if (o.have_env) {
+    for (const auto& [given, flag] : {std::pair{o.have_seed, "--seed"},
+                                      std::pair{o.have_elevation, "--elevation"},
+                                      std::pair{o.have_terrain, "--terrain"},
+                                      std::pair{o.have_density, "--density"}}) {
+      if (given) throw vb::InputError("", 0, flag, "cannot be combined with --env (see --help)");
+    }
+  } else {
+    if (!o.have_seed) throw vb::InputError("", 0, "--seed", "required (see --help)");
+    if (!o.have_name) throw vb::InputError("", 0, "--name", "required (see --help)");
+    if (!o.have_elevation) throw vb::InputError("", 0, "--elevation", "required (see --help)");
+    if (!o.have_terrain) throw vb::InputError("", 0, "--terrain", "required (see --help)");
+    if (!o.have_density) throw vb::InputError("", 0, "--density", "required (see --help)");
+  }
   if (o.out_dir.empty()) throw vb::InputError("", 0, "--out", "required (see --help)");
   if (o.image_dir.empty()) o.image_dir = (fs::path(o.out_dir) / ".." / "data" / "worlds").string();
   return o;
@@ -130,6 +177,7 @@ int Run(const Options& o) {
   }
 
   vb::terrain::TaskSpec task = vb::terrain::GenerateTask(o.gen);
+  if (o.scale != 1.0) task = vb::terrain::ScaleTask(task, o.scale);
   const fs::path task_path = fs::path(o.out_dir) / (o.gen.name + ".yaml");
   const fs::path image_path = fs::path(o.image_dir) / (o.gen.name + ".png");
   // stored relative to the task file (and with '/' separators) so the tree can be moved as a whole
@@ -138,6 +186,7 @@ int Run(const Options& o) {
                           .generic_string();
   vb::io::WriteHeightImage(task.heights, task.min_height_m, task.max_height_m, image_path.string());
   vb::io::SaveTask(task, task_path.string());
+  if (!o.picture.empty()) vb::io::WriteWorldPicture(task, o.picture);
 
   const vb::terrain::ElevationStats s = vb::terrain::ComputeElevationStats(
       task.heights, task.size_x_m / (task.heights.cols - 1));
@@ -154,6 +203,7 @@ int Run(const Options& o) {
               s.range_m, s.std_m, s.mean_slope_deg, s.p95_slope_deg, s.max_slope_deg,
               s.fraction_above_20deg, s.fraction_above_30deg, s.roughness_m);
   std::printf("  pairs: %zu, all connected, %zu path points\n", task.pairs.size(), path_points);
+  if (!o.picture.empty()) std::printf("  picture %s\n", o.picture.c_str());
   std::printf("  wrote %s and %s\n", task_path.lexically_normal().string().c_str(),
               image_path.lexically_normal().string().c_str());
   return 0;

@@ -1,7 +1,7 @@
-// A first world generator (vb_gen v0): seeded rugged height field, clustered semantics patches,
+// The benchmark generator (vb_gen, docs/generator.md): a seeded rugged height field calibrated
+// per elevation level against the original worlds' statistics, clustered semantics patches,
 // obstacles placed with the original's rules, 10 start/goal pairs on the 60 m circle with an A*
-// path each. The calibrated benchmark generator is a later issue; this one makes valid example
-// worlds for every elevation level and density.
+// path each; and the fixed assignment of seeds and labels to the 100 benchmark environments.
 #pragma once
 
 #include <cstdint>
@@ -18,6 +18,17 @@ struct GeneratorOptions {
   ObstacleDensity density = ObstacleDensity::kSparse;
   int grid_vertices = 129;      // height grid is grid_vertices^2 at 1 m spacing
 };
+
+// The 100 environments of the vb benchmark (tasks/env000.yaml ... env099.yaml): env id k in
+// [0, 100) has seed k, name "envKKK" and labels fixed by its id (docs/generator.md):
+//   terrain: 0-59 rigid, 60-89 deformable, 90-99 mixed (the original's 60/30/10 split by id);
+//   elevation: low, mid, high by k % 3; density: sparse, medium, dense by (k / 3) % 3.
+constexpr int kBenchmarkEnvironments = 100;
+GeneratorOptions BenchmarkEnvironment(int env_id);
+
+// Generates only the height field of GenerateTask(options) (same draws, same result), for
+// statistics over many worlds without obstacles and planning.
+HeightGrid GenerateElevation(const GeneratorOptions& options);
 
 // Generates a complete task; heights are in task.heights, height_image is "" (the caller writes
 // the image and sets the path). Every pair is guaranteed connected on the inflated grid.

@@ -33,8 +33,12 @@ struct OccupancyGrid {
 };
 
 // Obstacle footprints as the original (reference_verti_bench.md §4.4): a rock covers a square of
-// side int(4.4*scale/cell) cells (odd-widened as [c - w/2, c + w/2]); a tree one cell.
+// side int(4.4*scale*task.scale/cell) cells (odd-widened as [c - w/2, c + w/2]); a tree one cell.
 OccupancyGrid RasterizeObstacles(const TaskSpec& task);
+// Inflation radius of the global planners in cells: 4 m * task.scale (the original's int(4 * sf)
+// cells at 1 m cells; in a scaled world the cells shrink with it, so this stays 4 cells, where the
+// original's int(4 * sf) drops to 0 for sf < 1/4).
+int PlannerInflationCells(const TaskSpec& task);
 // Binary dilation with a (2r+1)^2 square.
 OccupancyGrid Inflate(const OccupancyGrid& grid, int radius_cells);
 

@@ -31,14 +31,14 @@ struct PatchGrid {
   double FrictionAt(int r, int c) const { return friction[static_cast<size_t>(r) * cols + c]; }
 };
 
-// A rock: collision box (4.4, 4.4, 3.8) m * scale, as the original, centred on the terrain
-// surface at (x, y) (half of it below ground).
+// A rock: collision box (4.4, 4.4, 3.8) m * scale * task.scale, as the original, resting on the
+// terrain (bottom face at the lowest ground point under it, terrain_physics.h).
 struct RockSpec {
   double x_m = 0.0;
   double y_m = 0.0;
   double scale = 1.0;
 };
-// A tree: collision box (1, 1, 5) m, standing on the terrain at (x, y).
+// A tree: collision box (1, 1, 5) m * task.scale, standing on the terrain at (x, y).
 struct TreeSpec {
   double x_m = 0.0;
   double y_m = 0.0;
@@ -58,7 +58,12 @@ struct TaskLabels {
   ElevationLevel elevation = ElevationLevel::kLow;
   TerrainType terrain = TerrainType::kRigid;
   ObstacleDensity density = ObstacleDensity::kSparse;
+  // Classes present in the patch grid, ascending by id (see ClassesPresent).
+  std::vector<SurfaceClass> classes;
 };
+
+// The distinct classes of a patch grid, ascending by id (the label stored in task files).
+std::vector<SurfaceClass> ClassesPresent(const PatchGrid& patches);
 
 struct TaskSpec {
   static constexpr int kFormatVersion = 1;

@@ -185,14 +185,14 @@ TrialResult RunTrial(const terrain::TaskSpec& task, const vehicles::VehicleParam
   result.spec = spec;
   result.task_name = task.name;
 
-  // Static world, and the planning grid as the original: obstacles dilated by int(4 * scale).
+  // Static world, and the planning grid as the original: obstacles dilated by 4 m * scale.
   const terrain::StartGoalPair& pair = task.pairs[static_cast<size_t>(spec.pair_index)];
   const double scale = task.scale;
   const terrain::Terrain ground(task);
   engine::PhysicsWorld world;
   terrain::AddTerrainToPhysics(task, ground, &world);
   const terrain::OccupancyGrid inflated = terrain::Inflate(
-      terrain::RasterizeObstacles(task), static_cast<int>(4.0 * scale));
+      terrain::RasterizeObstacles(task), terrain::PlannerInflationCells(task));
 
   // Vehicle facing the goal, dropped from start_height: the highest ground under the reference
   // point and the wheel centres decides the height, so that on a slope no wheel starts inside
