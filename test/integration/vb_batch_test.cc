@@ -239,6 +239,26 @@ TEST_F(VbBatchTest, KilledWorkerBecomesCrashedTrialAndIsRetried) {
             std::string::npos);
 }
 
+TEST(VbBatchCliTest, UnloadableTaskBecomesErrorTrialsNotABatchFailure) {
+  const fs::path dir = fs::temp_directory_path() / ("vb_batch_bad_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir / "tasks");
+  std::ofstream(dir / "tasks/broken.yaml") << "format: vb-task\nversion: 99\n";
+  const Outcome o = Sh(kBatch + " " + (dir / "tasks").string() + " --out " + (dir / "out").string());
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  const std::string index = ReadFile(dir / "out/index.csv");
+  // All pairs of a task that does not load: the benchmark's 10, each an error with the reason.
+  size_t errors = 0;
+  for (size_t p = index.find(",error,"); p != std::string::npos; p = index.find(",error,", p + 1)) {
+    ++errors;
+  }
+  EXPECT_EQ(errors, 10u) << index;
+  EXPECT_NE(index.find("broken.yaml"), std::string::npos) << index;
+  EXPECT_NE(index.find("version"), std::string::npos) << index;
+  EXPECT_EQ(Sh(kReport + " " + (dir / "out").string()).exit_code, 0);
+  fs::remove_all(dir);
+}
+
 TEST(VbBatchCliTest, BadInputExitsTwoNamingTheCulprit) {
   const std::string task = VB_SOURCE_DIR "/tasks/env042.yaml";
   struct Case {

@@ -251,9 +251,7 @@ std::string DataDir() {
 int DefaultJobs() {
   cpu_set_t set;
   if (::sched_getaffinity(0, sizeof(set), &set) == 0) return std::max(1, CPU_COUNT(&set));
-  return std::max(1L, ::sysconf(_SC_NPROCESSORS_ONLN)) > 0
-             ? static_cast<int>(::sysconf(_SC_NPROCESSORS_ONLN))
-             : 1;
+  return static_cast<int>(std::max(1L, ::sysconf(_SC_NPROCESSORS_ONLN)));
 }
 
 // Loads every task once (labels, pair count, hash). A task that fails to load is kept with its
@@ -280,6 +278,7 @@ vb::batch::MatrixSpec BuildSpec(const Options& o, const std::vector<std::string>
       t.density = std::string(vb::terrain::ObstacleDensityName(task.labels.density));
     } catch (const vb::InputError& e) {
       t.load_error = e.what();
+      t.elevation = t.terrain = t.density = "unknown";
       task.height_image.clear();
     }
     if (!scales.empty() && t.load_error.empty() &&
