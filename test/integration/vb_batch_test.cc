@@ -6,6 +6,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -153,6 +154,35 @@ TEST_F(VbBatchTest, KilledMidBatchAndResumedGivesTheSameReport) {
   ExpectSameReport(root_ / "full/report", dir / "report");
 }
 
+TEST_F(VbBatchTest, SigtermStopsCleanlyWritesTheIndexAndResumes) {
+  const fs::path dir = root_ / "sigterm";
+  const std::string cmd = kBatch + " " + kMatrix + " --jobs 1 --out " + dir.string();
+  const pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    ::execl("/bin/sh", "sh", "-c", ("exec " + cmd + " > /dev/null 2>&1").c_str(),
+            static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (CountJson(dir / "trials") < 1 && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  ::kill(pid, SIGTERM);   // the batch only, as Slurm's time limit does first
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 128 + SIGTERM);
+  const std::string index = ReadFile(dir / "index.csv");
+  const size_t rows = static_cast<size_t>(std::count(index.begin(), index.end(), '\n')) - 1;
+  EXPECT_GE(rows, 1u);
+  EXPECT_LT(rows, 6u);
+  const Outcome resumed = Sh(cmd);
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+  ASSERT_EQ(Sh(kReport + " " + dir.string()).exit_code, 0);
+  ExpectSameReport(root_ / "full/report", dir / "report");
+}
+
 TEST_F(VbBatchTest, ShardedAndMergedGivesTheSameReport) {
   for (int i = 0; i < 2; ++i) {
     const Outcome o = Sh(kBatch + " " + kMatrix + " --shard " + std::to_string(i) +
@@ -272,6 +302,7 @@ TEST(VbBatchCliTest, BadInputExitsTwoNamingTheCulprit) {
       {"/nonexistent/task.yaml --out /tmp/x", "/nonexistent/task.yaml"},
       {"'/nonexistent/*.yaml' --out /tmp/x", "glob matches no files"},
       {task, "--out"},
+      {task + " --out /tmp/x --scale 0.1", "no task files matched"},
   };
   for (const Case& c : cases) {
     const Outcome o = Sh(kBatch + " " + c.args);

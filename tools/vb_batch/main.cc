@@ -67,7 +67,8 @@ Trial status: success, rollover, stuck, timeout, sim_error (the runner's), error
 be set up, e.g. unsupported terrain) or crashed (worker died; retried on the next run).
 
 exit codes: 0 every trial has a record; 1 internal error; 2 bad input (flags, stale results,
-another vb_batch running on DIR).
+another vb_batch running on DIR); 130/143 interrupted by SIGINT/SIGTERM (running trials are
+stopped, the index is written; run the same command to resume).
 )";
 
 struct Options {
@@ -372,6 +373,11 @@ std::string Hms(double s) {
   return buf;
 }
 
+// Set by SIGINT/SIGTERM (Ctrl-C, scancel, a Slurm time limit): stop starting trials, kill the
+// running workers (their trials have no record and run again on resume), write the index, exit.
+volatile std::sig_atomic_t g_stop_signal = 0;
+extern "C" void OnStopSignal(int sig) { g_stop_signal = sig; }
+
 struct Running {
   vb::batch::TrialKey key;
   std::string stem;
@@ -476,6 +482,12 @@ int Run(const Options& o) {
               o.out_dir.c_str());
   std::fflush(stdout);
 
+  struct sigaction sa {};
+  sa.sa_handler = OnStopSignal;
+  sigemptyset(&sa.sa_mask);
+  ::sigaction(SIGINT, &sa, nullptr);
+  ::sigaction(SIGTERM, &sa, nullptr);
+
   std::map<pid_t, Running> running;
   size_t next = 0, finished = 0, successes = 0, crashed = 0;
   const Clock::time_point t0 = Clock::now();
@@ -499,7 +511,14 @@ int Run(const Options& o) {
   };
 
   while (next < todo.size() || !running.empty()) {
-    while (next < todo.size() && static_cast<int>(running.size()) < jobs) {
+    if (g_stop_signal != 0) {
+      for (const auto& [p, r] : running) ::kill(p, SIGKILL);
+      for (const auto& [p, r] : running) ::waitpid(p, nullptr, 0);
+      running.clear();
+      break;
+    }
+    while (g_stop_signal == 0 && next < todo.size() &&
+           static_cast<int>(running.size()) < jobs) {
       const vb::batch::TrialKey& k = todo[next++];
       const std::string stem = vb::batch::TrialStem(spec, k);
       const std::string stem_path = (trials_dir / stem).string();
@@ -508,6 +527,8 @@ int Run(const Options& o) {
       const pid_t pid = ::fork();
       if (pid < 0) throw std::runtime_error(std::string("fork failed: ") + std::strerror(errno));
       if (pid == 0) {
+        ::signal(SIGINT, SIG_DFL);
+        ::signal(SIGTERM, SIG_DFL);
         ::close(lock_fd);
         RunWorker(o, spec.tasks[k.task_index], k, stem_path);
       }
@@ -605,6 +626,11 @@ int Run(const Options& o) {
               rows.size(), mine.size(), summary.c_str(), finished,
               std::chrono::duration<double>(Clock::now() - t0).count(),
               (out / "index.csv").c_str());
+  if (g_stop_signal != 0) {
+    std::printf("vb_batch: interrupted by signal %d; run the same command again to resume\n",
+                static_cast<int>(g_stop_signal));
+    return 128 + g_stop_signal;
+  }
   if (crashed > 0) {
     std::printf("vb_batch: %zu trial(s) crashed; run the same command again to retry them\n",
                 crashed);
