@@ -23,12 +23,18 @@ d=$(mktemp -d /tmp/vb_slurm_test.XXXXXX)
 mkdir -p "$d/state" "$d/spool" "$d/munge"
 host=$(hostname -s)
 cpus=$(nproc)
-pids=()
 cleanup() {
-  local rc=$?
-  for p in "${pids[@]}"; do kill "$p" 2> /dev/null || true; done
+  local rc=$? started=() p f
   for f in "$d/slurmctld.pid" "$d/slurmd.pid" "$d/munged.pid"; do
-    [ -s "$f" ] && kill "$(cat "$f")" 2> /dev/null || true
+    [ -s "$f" ] && started+=("$(cat "$f")")
+  done
+  for p in "${started[@]}"; do kill "$p" 2> /dev/null || true; done
+  # wait until they are gone (slurmctld saves its state on exit) before removing their files
+  for _ in $(seq 1 100); do
+    alive=0
+    for p in "${started[@]}"; do kill -0 "$p" 2> /dev/null && alive=1; done
+    [ $alive = 0 ] && break
+    sleep 0.1
   done
   if [ $rc = 0 ]; then rm -rf "$d"; else echo "slurm test: kept $d for inspection" >&2; fi
 }
