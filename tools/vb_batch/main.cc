@@ -1,9 +1,9 @@
 // vb_batch: runs a benchmark matrix (environments x pairs x vehicles x systems x seeds) in
 // parallel worker processes, one forked process per trial, into one resumable output directory.
-// docs/batch.md describes the flags, the directory layout, resume and shards.
+// docs/batch.md describes the flags, the directory layout, resume and shards. This file: the
+// output directory (lock, settings), the resume scan, the scheduler with its progress display,
+// and the index.
 #include <fcntl.h>
-#include <glob.h>
-#include <sched.h>
 #include <sys/file.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -23,347 +23,20 @@
 
 #include "io/batch_io.h"
 #include "io/result_io.h"
-#include "io/task_io.h"
-#include "io/vehicle_io.h"
 #include "io/yaml_strict.h"
+#include "options.h"
+#include "setup.h"
 #include "vb/batch/index.h"
 #include "vb/batch/matrix.h"
-#include "vb/controllers/controller.h"
+#include "vb/batch/resume.h"
 #include "vb/engine/error.h"
-#include "vb/engine/runner/episode.h"
+#include "worker.h"
 
+namespace vb_batch {
 namespace {
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
-
-constexpr const char* kUsage = R"(usage: vb_batch ENV... --out DIR [options]
-
-Runs every trial of a matrix in parallel worker processes and writes the results to DIR.
-ENV is a task file, a glob (quote it: 'tasks/env0*.yaml') or a directory (all *.yaml in it).
-
-matrix:
-  --pairs all|LIST     start/goal pairs, e.g. 0,3,5-9 (default: all pairs of each task)
-  --vehicles LIST|all  vehicles from $VB_DATA_DIR/vehicles (default: hmmwv)
-  --systems LIST|all   mobility systems (default: pid)
-  --seeds LIST         trial seeds, e.g. 0-4 (default: 0)
-  --scale LIST         keep only tasks whose world scale is listed, e.g. 1,0.1 (default: all)
-execution:
-  --out DIR            output directory (required); re-running the same command resumes
-  --jobs N             parallel trials (default: CPUs available to this process)
-  --shard i/N          run only shard i of N (0-based; every N-th trial of the matrix)
-  --time-limit S       simulated time limit per trial (default 60, the benchmark rule)
-  --traj-every N       keep every N-th physics step in the trajectories (default 1)
-  --trial-timeout S    wall-clock limit per trial; the worker is killed and the trial recorded
-                       as crashed (default 0: none)
-  --rerun-stale        re-run trials whose record came from another task version or build
-                       (default: report them and stop)
-  --quiet              no per-trial lines or progress bar, only the summary
-  --help               this text
-
-outputs in DIR: trials/<task>_p<K>_s<seed>_<vehicle>_<system>.json and _traj.csv per trial,
-index.csv (one row per finished trial of this shard), batch.json (matrix and settings).
-Trial status: success, rollover, stuck, timeout, sim_error (the runner's), error (trial could not
-be set up, e.g. unsupported terrain) or crashed (worker died; retried on the next run).
-
-exit codes: 0 every trial has a record; 1 internal error; 2 bad input (flags, stale results,
-another vb_batch running on DIR); 130/143 interrupted by SIGINT/SIGTERM (running trials are
-stopped, the index is written; run the same command to resume).
-)";
-
-struct Options {
-  std::vector<std::string> envs;
-  std::string pairs = "all";
-  std::string vehicles = "hmmwv";
-  std::string systems = "pid";
-  std::string seeds = "0";
-  std::string scales;
-  std::string out_dir;
-  int jobs = 0;
-  std::string shard = "0/1";
-  double time_limit_s = vb::runner::EpisodeRules().time_limit_s;
-  int traj_every = 1;
-  double trial_timeout_s = 0.0;
-  bool rerun_stale = false;
-  bool quiet = false;
-  bool help = false;
-};
-
-std::vector<std::string> Split(const std::string& s, char sep) {
-  std::vector<std::string> out;
-  size_t start = 0;
-  while (true) {
-    const size_t p = s.find(sep, start);
-    out.push_back(s.substr(start, p == std::string::npos ? std::string::npos : p - start));
-    if (p == std::string::npos) return out;
-    start = p + 1;
-  }
-}
-
-uint64_t ParseU64(const std::string& flag, const std::string& text) {
-  char* end = nullptr;
-  errno = 0;
-  const unsigned long long v = std::strtoull(text.c_str(), &end, 10);
-  if (text.empty() || *end != '\0' || errno != 0 || text[0] == '-' || text[0] == '+') {
-    throw vb::InputError("", 0, flag, "'" + text + "' is not a non-negative integer");
-  }
-  return v;
-}
-double ParseDouble(const std::string& flag, const std::string& text) {
-  char* end = nullptr;
-  errno = 0;
-  const double v = std::strtod(text.c_str(), &end);
-  if (text.empty() || *end != '\0' || errno != 0 || !(v >= 0.0)) {
-    throw vb::InputError("", 0, flag, "'" + text + "' is not a valid non-negative number");
-  }
-  return v;
-}
-
-// "0,3,5-9" -> {0, 3, 5, 6, 7, 8, 9}
-std::vector<uint64_t> ParseIntList(const std::string& flag, const std::string& text) {
-  std::vector<uint64_t> out;
-  for (const std::string& item : Split(text, ',')) {
-    const size_t dash = item.find('-', 1);
-    if (dash == std::string::npos) {
-      out.push_back(ParseU64(flag, item));
-      continue;
-    }
-    const uint64_t a = ParseU64(flag, item.substr(0, dash));
-    const uint64_t b = ParseU64(flag, item.substr(dash + 1));
-    if (b < a || b - a > 100000) throw vb::InputError("", 0, flag, "bad range '" + item + "'");
-    for (uint64_t v = a; v <= b; ++v) out.push_back(v);
-  }
-  return out;
-}
-
-Options ParseArgs(int argc, char** argv) {
-  Options o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw vb::InputError("", 0, a, "missing value");
-      return argv[++i];
-    };
-    if (a == "--help" || a == "-h") {
-      o.help = true;
-    } else if (a == "--pairs") {
-      o.pairs = value();
-    } else if (a == "--vehicles") {
-      o.vehicles = value();
-    } else if (a == "--systems") {
-      o.systems = value();
-    } else if (a == "--seeds") {
-      o.seeds = value();
-    } else if (a == "--scale") {
-      o.scales = value();
-    } else if (a == "--out") {
-      o.out_dir = value();
-    } else if (a == "--jobs") {
-      const uint64_t n = ParseU64(a, value());
-      if (n < 1 || n > 4096) throw vb::InputError("", 0, a, "must be in [1, 4096]");
-      o.jobs = static_cast<int>(n);
-    } else if (a == "--shard") {
-      o.shard = value();
-    } else if (a == "--time-limit") {
-      o.time_limit_s = ParseDouble(a, value());
-      if (!(o.time_limit_s > 0.0)) throw vb::InputError("", 0, a, "must be > 0");
-    } else if (a == "--traj-every") {
-      const uint64_t n = ParseU64(a, value());
-      if (n < 1 || n > 1000000) throw vb::InputError("", 0, a, "must be in [1, 1000000]");
-      o.traj_every = static_cast<int>(n);
-    } else if (a == "--trial-timeout") {
-      o.trial_timeout_s = ParseDouble(a, value());
-    } else if (a == "--rerun-stale") {
-      o.rerun_stale = true;
-    } else if (a == "--quiet") {
-      o.quiet = true;
-    } else if (!a.empty() && a[0] == '-') {
-      throw vb::InputError("", 0, a, "unknown option (see --help)");
-    } else {
-      o.envs.push_back(a);
-    }
-  }
-  if (o.help) return o;
-  if (o.envs.empty()) throw vb::InputError("", 0, "ENV", "no environments given (see --help)");
-  if (o.out_dir.empty()) throw vb::InputError("", 0, "--out", "required (see --help)");
-  return o;
-}
-
-std::string Join(const std::vector<std::string>& v) {
-  std::string s;
-  for (const std::string& x : v) s += (s.empty() ? "" : ", ") + x;
-  return s;
-}
-
-// Names from a LIST|all flag, each checked against `valid`.
-std::vector<std::string> NameList(const std::string& flag, const std::string& text,
-                                  const std::vector<std::string>& valid) {
-  if (text == "all") return valid;
-  std::vector<std::string> out = Split(text, ',');
-  for (const std::string& n : out) {
-    if (std::find(valid.begin(), valid.end(), n) == valid.end()) {
-      throw vb::InputError("", 0, flag, "unknown name '" + n + "'; valid: " + Join(valid));
-    }
-  }
-  return out;
-}
-
-// Task files named by ENV arguments: files as given, globs expanded, directories' *.yaml.
-// Sorted and de-duplicated (by absolute path). A name that matches nothing is bad input.
-std::vector<std::string> ResolveEnvs(const std::vector<std::string>& envs) {
-  std::vector<std::string> files;
-  for (const std::string& e : envs) {
-    std::error_code ec;
-    if (fs::is_directory(e, ec)) {
-      size_t found = 0;
-      for (const fs::directory_entry& d : fs::directory_iterator(e)) {
-        if (d.is_regular_file() && d.path().extension() == ".yaml") {
-          files.push_back(d.path().string());
-          ++found;
-        }
-      }
-      if (found == 0) throw vb::InputError(e, 0, "ENV", "directory has no *.yaml task files");
-    } else if (e.find_first_of("*?[") != std::string::npos) {
-      glob_t g;
-      const int rc = ::glob(e.c_str(), 0, nullptr, &g);
-      if (rc != 0) {
-        ::globfree(&g);
-        throw vb::InputError(e, 0, "ENV", "glob matches no files");
-      }
-      for (size_t i = 0; i < g.gl_pathc; ++i) files.push_back(g.gl_pathv[i]);
-      ::globfree(&g);
-    } else if (fs::is_regular_file(e, ec)) {
-      files.push_back(e);
-    } else {
-      throw vb::InputError(e, 0, "ENV", "no such task file, directory or glob");
-    }
-  }
-  for (std::string& f : files) f = fs::absolute(f).lexically_normal().string();
-  std::sort(files.begin(), files.end());
-  files.erase(std::unique(files.begin(), files.end()), files.end());
-  return files;
-}
-
-std::string DataDir() {
-  const char* env = std::getenv("VB_DATA_DIR");
-  return env != nullptr ? env : VB_SOURCE_DIR "/data";
-}
-
-int DefaultJobs() {
-  cpu_set_t set;
-  if (::sched_getaffinity(0, sizeof(set), &set) == 0) return std::max(1, CPU_COUNT(&set));
-  return static_cast<int>(std::max(1L, ::sysconf(_SC_NPROCESSORS_ONLN)));
-}
-
-// Loads every task once (labels, pair count, hash). A task that fails to load is kept with its
-// error: its trials are recorded as `error`, the batch goes on.
-vb::batch::MatrixSpec BuildSpec(const Options& o, const std::vector<std::string>& files) {
-  vb::batch::MatrixSpec spec;
-  std::vector<double> scales;
-  if (!o.scales.empty()) {
-    for (const std::string& s : Split(o.scales, ',')) scales.push_back(ParseDouble("--scale", s));
-  }
-  for (const std::string& f : files) {
-    vb::batch::MatrixTask t;
-    t.path = f;
-    t.name = fs::path(f).stem().string();
-    vb::terrain::TaskSpec task;
-    task.source_file = f;
-    try {
-      task = vb::io::LoadTask(f);
-      t.name = task.name;
-      t.num_pairs = static_cast<int>(task.pairs.size());
-      t.scale = task.scale;
-      t.elevation = std::string(vb::terrain::ElevationLevelName(task.labels.elevation));
-      t.terrain = std::string(vb::terrain::TerrainTypeName(task.labels.terrain));
-      t.density = std::string(vb::terrain::ObstacleDensityName(task.labels.density));
-    } catch (const vb::InputError& e) {
-      t.load_error = e.what();
-      t.elevation = t.terrain = t.density = "unknown";
-      task.height_image.clear();
-    }
-    if (!scales.empty() && t.load_error.empty() &&
-        std::none_of(scales.begin(), scales.end(),
-                     [&](double s) { return std::abs(s - t.scale) <= 1e-9 * std::max(1.0, s); })) {
-      continue;
-    }
-    t.task_fnv1a64 = vb::io::MakeProvenance(task, vb::runner::TrialSpec()).task_fnv1a64;
-    spec.tasks.push_back(std::move(t));
-  }
-  if (!o.pairs.empty() && o.pairs != "all") {
-    for (uint64_t p : ParseIntList("--pairs", o.pairs)) {
-      if (p > 1000000) throw vb::InputError("", 0, "--pairs", "pair index too large");
-      spec.pairs.push_back(static_cast<int>(p));
-    }
-  }
-  spec.vehicles = NameList("--vehicles", o.vehicles, vb::io::VehicleNames(DataDir()));
-  spec.systems = NameList("--systems", o.systems, vb::controllers::ControllerNames());
-  for (uint64_t s : ParseIntList("--seeds", o.seeds)) spec.seeds.push_back(s);
-  return spec;
-}
-
-vb::io::Provenance ProvenanceFor(const vb::batch::MatrixTask& t,
-                                 const vb::batch::TrialKey& key) {
-  vb::terrain::TaskSpec dummy;
-  dummy.source_file = t.path;
-  vb::runner::TrialSpec spec;
-  spec.vehicle = key.vehicle;
-  spec.system = key.system;
-  spec.seed = key.seed;
-  vb::io::Provenance p = vb::io::MakeProvenance(dummy, spec);
-  p.task_fnv1a64 = t.task_fnv1a64;
-  return p;
-}
-
-// The worker: runs one trial in this (forked) process and writes its record. Never returns.
-[[noreturn]] void RunWorker(const Options& o, const vb::batch::MatrixTask& t,
-                            const vb::batch::TrialKey& key, const std::string& stem_path) {
-  int code = 0;
-  try {
-    if (!t.load_error.empty()) {
-      vb::io::WriteUnrunTrialJson(stem_path + ".json", t.name, key.pair, ProvenanceFor(t, key),
-                                  "error", t.load_error);
-      std::_Exit(0);
-    }
-    try {
-      const vb::terrain::TaskSpec task = vb::io::LoadTask(t.path);
-      const vb::vehicles::VehicleParams params =
-          vb::io::LoadVehicle(DataDir() + "/vehicles/" + key.vehicle + ".yaml");
-      vb::runner::TrialSpec spec;
-      spec.pair_index = key.pair;
-      spec.seed = key.seed;
-      spec.system = key.system;
-      spec.vehicle = key.vehicle;
-      vb::runner::EpisodeRules rules;
-      rules.time_limit_s = o.time_limit_s;
-      rules.trajectory_every_n_steps = o.traj_every;
-      const vb::runner::TrialResult r = vb::runner::RunTrial(task, params, spec, rules);
-      // Trajectory first: a record's presence implies its trajectory is complete.
-      vb::io::WriteTrajectoryCsv(r, stem_path + "_traj.csv");
-      vb::io::WriteTrialJson(r, stem_path + ".json", vb::io::MakeProvenance(task, spec));
-    } catch (const vb::InputError& e) {
-      vb::io::WriteUnrunTrialJson(stem_path + ".json", t.name, key.pair, ProvenanceFor(t, key),
-                                  "error", e.what());
-    }
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "vb_batch worker: %s: %s\n", stem_path.c_str(), e.what());
-    code = 1;   // the parent records the trial as crashed
-  }
-  std::fflush(stderr);
-  std::_Exit(code);
-}
-
-std::string DescribeWaitStatus(int status) {
-  if (WIFSIGNALED(status)) {
-    const int sig = WTERMSIG(status);
-    return "worker killed by signal " + std::to_string(sig) + " (" + strsignal(sig) + ")";
-  }
-  if (WIFEXITED(status)) {
-    return "worker exited with code " + std::to_string(WEXITSTATUS(status)) +
-           " without a result (internal error, see the batch's stderr)";
-  }
-  return "worker ended abnormally";
-}
 
 std::string Hms(double s) {
   if (!(s >= 0.0) || s > 1e7) return "--:--:--";
@@ -438,33 +111,26 @@ int Run(const Options& o) {
   for (const vb::batch::TrialKey& k : mine) {
     const std::string stem = vb::batch::TrialStem(spec, k);
     const fs::path json = trials_dir / (stem + ".json");
-    if (!fs::exists(json)) {
-      todo.push_back(k);
-      continue;
+    vb::batch::TrialRow record;
+    bool have_record = false;
+    if (fs::exists(json)) {
+      try {
+        record = vb::io::ReadTrialJson(json.string());
+        have_record = true;
+      } catch (const vb::InputError& e) {
+        std::fprintf(stderr, "vb_batch: warning: unreadable record, re-running: %s\n", e.what());
+      }
     }
-    vb::batch::TrialRow r;
-    try {
-      r = vb::io::ReadTrialJson(json.string());
-    } catch (const vb::InputError& e) {
-      std::fprintf(stderr, "vb_batch: warning: unreadable record, re-running: %s\n", e.what());
-      todo.push_back(k);
-      continue;
-    }
-    if (r.status == "crashed") {
-      todo.push_back(k);
-      continue;
-    }
-    std::string why;
-    const std::string& task_hash = spec.tasks[k.task_index].task_fnv1a64;
-    if (r.task_fnv1a64 != task_hash) why += " task changed (" + r.task_fnv1a64 + " -> " + task_hash + ")";
-    if (r.git_commit != build.git_commit) why += " git commit " + r.git_commit + " -> " + build.git_commit;
-    if (r.vb_version != build.vb_version) why += " vb version " + r.vb_version + " -> " + build.vb_version;
-    if (why.empty()) {
+    const vb::batch::ResumeDecision d =
+        vb::batch::DecideResume(have_record ? &record : nullptr,
+                                spec.tasks[k.task_index].task_fnv1a64, build.git_commit,
+                                build.vb_version);
+    if (d.action == vb::batch::ResumeAction::kSkip) {
       ++done_before;
-    } else {
-      stale.push_back(stem + ":" + why);
-      todo.push_back(k);
+      continue;
     }
+    if (d.action == vb::batch::ResumeAction::kStale) stale.push_back(stem + ": " + d.reason);
+    todo.push_back(k);
   }
   if (!stale.empty() && !o.rerun_stale) {
     std::string msg = std::to_string(stale.size()) +
@@ -639,15 +305,16 @@ int Run(const Options& o) {
 }
 
 }  // namespace
+}  // namespace vb_batch
 
 int main(int argc, char** argv) {
   try {
-    const Options options = ParseArgs(argc, argv);
+    const vb_batch::Options options = vb_batch::ParseArgs(argc, argv);
     if (options.help) {
-      std::fputs(kUsage, stdout);
+      std::fputs(vb_batch::kUsage, stdout);
       return 0;
     }
-    return Run(options);
+    return vb_batch::Run(options);
   } catch (const vb::InputError& e) {
     std::fprintf(stderr, "vb_batch: error: %s\n", e.what());
     return 2;
