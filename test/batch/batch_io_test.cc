@@ -1,6 +1,7 @@
 // Trial records written by the runner's writer and by the batch (error/crashed) read back into
 // index rows; batch.json round trip.
 #include "io/batch_io.h"
+#include "io/build_info.h"
 
 #include <unistd.h>
 
@@ -118,6 +119,28 @@ TEST_F(BatchIoTest, BatchJsonRoundTrip) {
   EXPECT_EQ(c.shard_trials, 125u);
   EXPECT_EQ(c.settings, b.settings);
   EXPECT_EQ(c.git_commit, "abc");
+}
+
+}  // namespace
+}  // namespace vb::io
+
+namespace vb::io {
+namespace {
+
+// The commit comes from the build (cmake/vb_build_info.cmake): 12 hex digits, optionally
+// "-dirty", or "unknown" outside a git checkout — and it is what provenance records.
+TEST(BuildInfoTest, GitCommitIsAShortHashOrUnknownAndGoesIntoProvenance) {
+  const std::string c = BuildGitCommit();
+  if (c != "unknown") {
+    ASSERT_GE(c.size(), 12u) << c;
+    for (size_t i = 0; i < 12; ++i) {
+      EXPECT_NE(std::string("0123456789abcdef").find(c[i]), std::string::npos) << c;
+    }
+    EXPECT_TRUE(c.size() == 12 || c.substr(12) == "-dirty") << c;
+  }
+  terrain::TaskSpec task;
+  task.source_file = VB_SOURCE_DIR "/tasks/env042.yaml";
+  EXPECT_EQ(MakeProvenance(task, runner::TrialSpec()).git_commit, c);
 }
 
 }  // namespace
