@@ -121,6 +121,11 @@ bool IsKnownStatus(const std::string& s) {
   return IsRunnerStatus(s) || s == "error" || s == "crashed";
 }
 
+std::string RowStem(const TrialRow& r) {
+  return r.task + "_p" + std::to_string(r.pair) + "_s" + std::to_string(r.seed) + "_" +
+         r.vehicle + "_" + r.system;
+}
+
 std::string IndexCsv(const std::vector<TrialRow>& rows) {
   std::string text;
   for (size_t i = 0; i < kNumColumns; ++i) text += std::string(i ? "," : "") + kColumns[i];

@@ -44,6 +44,9 @@ struct TrialRow {
   std::string message;
 };
 
+// File stem of a row's trial files: <task>_p<K>_s<seed>_<vehicle>_<system> (as TrialStem).
+std::string RowStem(const TrialRow& row);
+
 // CSV text of the index (header + rows in the given order). Numbers print with "%.17g", NaN as
 // an empty field.
 std::string IndexCsv(const std::vector<TrialRow>& rows);
