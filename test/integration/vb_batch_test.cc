@@ -109,6 +109,18 @@ TEST_F(VbBatchTest, FullRunRecordsEveryTrialWithItsStatus) {
             std::string::npos)
       << md;
   EXPECT_TRUE(fs::exists(root_ / "full/report/fig6_terrain_success.png"));
+
+  // Top-down pictures on request; an unknown trial name is bad input.
+  const std::string dir = (root_ / "full").string();
+  const Outcome pic = Sh(kReport + " " + dir + " --out " + dir + "/pics --topdown " +
+                         "env042_p1_s0_hmmwv_pid,env061_p0_s0_hmmwv_pid");
+  ASSERT_EQ(pic.exit_code, 0) << pic.output;
+  EXPECT_GT(fs::file_size(root_ / "full/pics/topdown/env042_p1_s0_hmmwv_pid.png"), 10000u);
+  EXPECT_TRUE(fs::exists(root_ / "full/pics/topdown/env061_p0_s0_hmmwv_pid.png"));
+  EXPECT_FALSE(fs::exists(root_ / "full/pics/topdown/env010_p0_s0_hmmwv_pid.png"));
+  const Outcome bad = Sh(kReport + " " + dir + " --topdown env999_p0_s0_hmmwv_pid");
+  EXPECT_EQ(bad.exit_code, 2) << bad.output;
+  EXPECT_NE(bad.output.find("env999_p0_s0_hmmwv_pid"), std::string::npos) << bad.output;
 }
 
 TEST_F(VbBatchTest, RerunSkipsFinishedTrials) {

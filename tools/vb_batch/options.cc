@@ -11,7 +11,8 @@ namespace vb_batch {
 const char* const kUsage = R"(usage: vb_batch ENV... --out DIR [options]
 
 Runs every trial of a matrix in parallel worker processes and writes the results to DIR.
-ENV is a task file, a glob (quote it: 'tasks/env0*.yaml') or a directory (all *.yaml in it).
+ENV is a task file, a glob (quote it: 'tasks/env0*.yaml') or a directory (the *.yaml files
+directly in it; not recursive).
 
 matrix:
   --pairs all|LIST     start/goal pairs, e.g. 0,3,5-9 (default: all pairs of each task)

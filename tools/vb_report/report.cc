@@ -39,6 +39,18 @@ int Report(const std::vector<std::string>& args) {
   if (dir.empty()) throw vb::InputError("", 0, "DIR", "no batch directory given (see --help)");
   if (out.empty()) out = (fs::path(dir) / "report").string();
   const std::vector<vb::batch::TrialRow> rows = ReadIndex(dir);
+  std::vector<std::string> wanted;   // --topdown trial stems; empty = all
+  if (!topdown.empty() && topdown != "all") {
+    std::stringstream ss(topdown);
+    std::string s;
+    while (std::getline(ss, s, ',')) {
+      if (std::none_of(rows.begin(), rows.end(),
+                       [&](const vb::batch::TrialRow& r) { return Stem(r) == s; })) {
+        throw vb::InputError(dir + "/index.csv", 0, "--topdown", "no trial '" + s + "'");
+      }
+      wanted.push_back(s);
+    }
+  }
   std::error_code ec;
   fs::create_directories(out, ec);
   if (ec) throw vb::InputError(out, 0, "--out", "cannot create directory: " + ec.message());
@@ -57,12 +69,6 @@ int Report(const std::vector<std::string>& args) {
   size_t pictures = 0;
   if (!topdown.empty()) {
     fs::create_directories(out + "/topdown", ec);
-    std::vector<std::string> wanted;
-    if (topdown != "all") {
-      std::stringstream ss(topdown);
-      std::string s;
-      while (std::getline(ss, s, ',')) wanted.push_back(s);
-    }
     std::map<std::string, vb::terrain::TaskSpec> tasks;   // loaded once per task file
     for (const vb::batch::TrialRow& r : rows) {
       const std::string stem = Stem(r);
