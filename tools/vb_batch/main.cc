@@ -57,35 +57,22 @@ struct Running {
   Clock::time_point start;
 };
 
-int Run(const Options& o) {
-  const vb::batch::Shard shard = vb::batch::ParseShard(o.shard);
-  const std::vector<std::string> files = ResolveEnvs(o.envs);
-  const vb::batch::MatrixSpec spec = BuildSpec(o, files);
-  const std::vector<vb::batch::TrialKey> all = vb::batch::ExpandMatrix(spec);
-  const std::vector<vb::batch::TrialKey> mine = vb::batch::SelectShard(all, shard);
-  const int jobs = o.jobs > 0 ? o.jobs : DefaultJobs();
-
+// Creates DIR and DIR/trials, takes DIR's lock (held until this process ends, even by kill -9),
+// removes temporary files of writers killed mid-write, and checks that the result-changing
+// settings match earlier runs into DIR. Returns the lock's file descriptor.
+int PrepareOutputDir(const Options& o, const std::string& settings) {
   const fs::path out = o.out_dir;
-  const fs::path trials_dir = out / "trials";
   std::error_code ec;
-  fs::create_directories(trials_dir, ec);
+  fs::create_directories(out / "trials", ec);
   if (ec) throw vb::InputError(o.out_dir, 0, "--out", "cannot create directory: " + ec.message());
-
-  // One batch per directory at a time (the lock is released when this process ends, even by
-  // kill -9).
   const std::string lock_path = (out / ".lock").string();
   const int lock_fd = ::open(lock_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
   if (lock_fd < 0 || ::flock(lock_fd, LOCK_EX | LOCK_NB) != 0) {
     throw vb::InputError(o.out_dir, 0, "--out", "another vb_batch is running on this directory");
   }
-  // Temporary files of writers killed mid-write.
-  for (const fs::directory_entry& d : fs::directory_iterator(trials_dir)) {
+  for (const fs::directory_entry& d : fs::directory_iterator(out / "trials")) {
     if (d.path().filename().string().find(".tmp.") != std::string::npos) fs::remove(d.path(), ec);
   }
-
-  // Settings that change results must match earlier runs into the same directory.
-  const std::string settings = "time_limit_s=" + vb::io::FormatDouble(o.time_limit_s) +
-                               " traj_every=" + std::to_string(o.traj_every);
   const fs::path settings_path = out / "settings.txt";
   if (fs::exists(settings_path)) {
     std::FILE* f = std::fopen(settings_path.c_str(), "rb");
@@ -102,15 +89,23 @@ int Run(const Options& o) {
   } else {
     vb::io::WriteFileAtomic(settings_path.string(), settings + "\n");
   }
+  return lock_fd;
+}
 
-  const vb::io::Provenance build = ProvenanceFor(spec.tasks.front(), all.front());
-  // Resume: which trials already have a valid record from this build and task version.
+struct Plan {
   std::vector<vb::batch::TrialKey> todo;
-  std::vector<std::string> stale;
   size_t done_before = 0;
+};
+
+// Resume: the trials of `mine` that still need to run (docs/batch.md "Resume"). Stale records
+// stop the batch unless --rerun-stale.
+Plan PlanResume(const Options& o, const vb::batch::MatrixSpec& spec,
+                const std::vector<vb::batch::TrialKey>& mine, const vb::io::Provenance& build) {
+  Plan plan;
+  std::vector<std::string> stale;
   for (const vb::batch::TrialKey& k : mine) {
     const std::string stem = vb::batch::TrialStem(spec, k);
-    const fs::path json = trials_dir / (stem + ".json");
+    const fs::path json = fs::path(o.out_dir) / "trials" / (stem + ".json");
     vb::batch::TrialRow record;
     bool have_record = false;
     if (fs::exists(json)) {
@@ -126,11 +121,11 @@ int Run(const Options& o) {
                                 spec.tasks[k.task_index].task_fnv1a64, build.git_commit,
                                 build.vb_version);
     if (d.action == vb::batch::ResumeAction::kSkip) {
-      ++done_before;
+      ++plan.done_before;
       continue;
     }
     if (d.action == vb::batch::ResumeAction::kStale) stale.push_back(stem + ": " + d.reason);
-    todo.push_back(k);
+    plan.todo.push_back(k);
   }
   if (!stale.empty() && !o.rerun_stale) {
     std::string msg = std::to_string(stale.size()) +
@@ -140,14 +135,50 @@ int Run(const Options& o) {
     msg += "use --rerun-stale to replace them, or another --out";
     throw vb::InputError(o.out_dir, 0, "--out", msg);
   }
+  return plan;
+}
 
+// One line of progress on a terminal: bar, done/total, successes, elapsed time and ETA.
+class ProgressBar {
+ public:
+  ProgressBar(bool enabled, size_t total) : enabled_(enabled), total_(total) {}
+  void Draw(size_t finished, size_t successes, bool force) {
+    if (!enabled_) return;
+    const Clock::time_point now = Clock::now();
+    if (!force && now - last_draw_ < std::chrono::milliseconds(500)) return;
+    last_draw_ = now;
+    const double elapsed = std::chrono::duration<double>(now - start_).count();
+    const double eta = finished > 0 ? elapsed / finished * (total_ - finished) : -1.0;
+    const int width = 30;
+    const int filled = total_ ? static_cast<int>(width * finished / total_) : width;
+    std::fprintf(stderr, "\r[%s%s] %zu/%zu  success %zu (%.0f%%)  elapsed %s  ETA %s ",
+                 std::string(filled, '#').c_str(), std::string(width - filled, '.').c_str(),
+                 finished, total_, successes, finished ? 100.0 * successes / finished : 0.0,
+                 Hms(elapsed).c_str(), Hms(eta).c_str());
+    std::fflush(stderr);
+  }
+  void Finish() {
+    if (enabled_) std::fputc('\n', stderr);
+  }
+
+ private:
+  bool enabled_;
+  size_t total_;
+  Clock::time_point start_ = Clock::now();
+  Clock::time_point last_draw_ = start_ - std::chrono::seconds(10);
+};
+
+struct RunCounts {
+  size_t finished = 0, successes = 0, crashed = 0;
+};
+
+// Runs `todo` with up to `jobs` forked workers at a time until done or a stop signal; a worker
+// that leaves no record becomes a `crashed` record.
+RunCounts RunTrials(const Options& o, const vb::batch::MatrixSpec& spec,
+                    const std::vector<vb::batch::TrialKey>& todo, int jobs, int lock_fd) {
+  const fs::path trials_dir = fs::path(o.out_dir) / "trials";
   const bool tty = !o.quiet && ::isatty(STDERR_FILENO);
-  std::printf("vb_batch: %zu trials in matrix, shard %d/%d: %zu trials, %zu already done, "
-              "%zu to run on %d jobs -> %s\n",
-              all.size(), shard.index, shard.count, mine.size(), done_before, todo.size(), jobs,
-              o.out_dir.c_str());
-  std::fflush(stdout);
-
+  ProgressBar bar(tty, todo.size());
   struct sigaction sa {};
   sa.sa_handler = OnStopSignal;
   sigemptyset(&sa.sa_mask);
@@ -155,39 +186,17 @@ int Run(const Options& o) {
   ::sigaction(SIGTERM, &sa, nullptr);
 
   std::map<pid_t, Running> running;
-  size_t next = 0, finished = 0, successes = 0, crashed = 0;
-  const Clock::time_point t0 = Clock::now();
-  Clock::time_point last_draw = t0 - std::chrono::seconds(10);
-  auto draw = [&](bool force) {
-    if (!tty) return;
-    const Clock::time_point now = Clock::now();
-    if (!force && now - last_draw < std::chrono::milliseconds(500)) return;
-    last_draw = now;
-    const double elapsed = std::chrono::duration<double>(now - t0).count();
-    const double eta = finished > 0 ? elapsed / finished * (todo.size() - finished) : -1.0;
-    const size_t total = todo.size();
-    const int width = 30;
-    const int filled = total ? static_cast<int>(width * finished / total) : width;
-    std::fprintf(stderr, "\r[%s%s] %zu/%zu  success %zu (%.0f%%)  elapsed %s  ETA %s ",
-                 std::string(filled, '#').c_str(), std::string(width - filled, '.').c_str(),
-                 finished, total, successes,
-                 finished ? 100.0 * successes / finished : 0.0, Hms(elapsed).c_str(),
-                 Hms(eta).c_str());
-    std::fflush(stderr);
-  };
-
+  size_t next = 0;
+  RunCounts c;
   while (next < todo.size() || !running.empty()) {
     if (g_stop_signal != 0) {
       for (const auto& [p, r] : running) ::kill(p, SIGKILL);
       for (const auto& [p, r] : running) ::waitpid(p, nullptr, 0);
-      running.clear();
       break;
     }
-    while (g_stop_signal == 0 && next < todo.size() &&
-           static_cast<int>(running.size()) < jobs) {
+    while (next < todo.size() && static_cast<int>(running.size()) < jobs) {
       const vb::batch::TrialKey& k = todo[next++];
       const std::string stem = vb::batch::TrialStem(spec, k);
-      const std::string stem_path = (trials_dir / stem).string();
       std::fflush(stdout);
       std::fflush(stderr);
       const pid_t pid = ::fork();
@@ -196,21 +205,21 @@ int Run(const Options& o) {
         ::signal(SIGINT, SIG_DFL);
         ::signal(SIGTERM, SIG_DFL);
         ::close(lock_fd);
-        RunWorker(o, spec.tasks[k.task_index], k, stem_path);
+        RunWorker(o, spec.tasks[k.task_index], k, (trials_dir / stem).string());
       }
       running[pid] = Running{k, stem, Clock::now()};
     }
     int status = 0;
     const pid_t pid = ::waitpid(-1, &status, WNOHANG);
-    if (pid == 0) {
+    if (pid == 0) {   // nothing finished: enforce the wall-clock limit, redraw, poll again
       if (o.trial_timeout_s > 0.0) {
-        for (auto& [p, r] : running) {
+        for (const auto& [p, r] : running) {
           if (std::chrono::duration<double>(Clock::now() - r.start).count() > o.trial_timeout_s) {
             ::kill(p, SIGKILL);
           }
         }
       }
-      draw(false);
+      bar.Draw(c.finished, c.successes, false);
       std::this_thread::sleep_for(std::chrono::milliseconds(20));
       continue;
     }
@@ -243,25 +252,33 @@ int Run(const Options& o) {
                                   ProvenanceFor(spec.tasks[r.key.task_index], r.key), "crashed",
                                   why);
       result = "crashed";
-      ++crashed;
+      ++c.crashed;
     }
-    ++finished;
-    if (result == "success") ++successes;
+    ++c.finished;
+    if (result == "success") ++c.successes;
     if (!o.quiet && !tty) {
-      std::printf("[%zu/%zu] %s %s (%.1f s wall)\n", finished, todo.size(), r.stem.c_str(),
+      std::printf("[%zu/%zu] %s %s (%.1f s wall)\n", c.finished, todo.size(), r.stem.c_str(),
                   result.c_str(), wall_s);
       std::fflush(stdout);
     }
-    draw(finished == todo.size());
+    bar.Draw(c.finished, c.successes, c.finished == todo.size());
   }
-  if (tty) std::fputc('\n', stderr);
+  bar.Finish();
+  return c;
+}
 
-  // The index, rebuilt from the records of this shard's trials (in matrix order).
+// The index (rebuilt from the records of this shard's trials, in matrix order) and batch.json.
+// Returns the rows.
+std::vector<vb::batch::TrialRow> WriteIndex(const Options& o, const vb::batch::MatrixSpec& spec,
+                                            const std::vector<vb::batch::TrialKey>& all,
+                                            const std::vector<vb::batch::TrialKey>& mine,
+                                            const vb::batch::Shard& shard,
+                                            const std::string& settings,
+                                            const vb::io::Provenance& build) {
+  const fs::path out = o.out_dir;
   std::vector<vb::batch::TrialRow> rows;
-  std::map<std::string, int> counts;
   for (const vb::batch::TrialKey& k : mine) {
-    const std::string stem = vb::batch::TrialStem(spec, k);
-    const fs::path json = trials_dir / (stem + ".json");
+    const fs::path json = out / "trials" / (vb::batch::TrialStem(spec, k) + ".json");
     if (!fs::exists(json)) continue;
     vb::batch::TrialRow r = vb::io::ReadTrialJson(json.string());
     const vb::batch::MatrixTask& t = spec.tasks[k.task_index];
@@ -270,7 +287,6 @@ int Run(const Options& o) {
     r.elevation = t.elevation;
     r.terrain = t.terrain;
     r.density = t.density;
-    ++counts[r.status];
     rows.push_back(std::move(r));
   }
   vb::io::WriteFileAtomic((out / "index.csv").string(), vb::batch::IndexCsv(rows));
@@ -283,23 +299,49 @@ int Run(const Options& o) {
   info.vb_version = build.vb_version;
   info.git_commit = build.git_commit;
   vb::io::WriteBatchJson(info, (out / "batch.json").string());
+  return rows;
+}
 
+int Run(const Options& o) {
+  const Clock::time_point t0 = Clock::now();
+  const vb::batch::Shard shard = vb::batch::ParseShard(o.shard);
+  const vb::batch::MatrixSpec spec = BuildSpec(o, ResolveEnvs(o.envs));
+  const std::vector<vb::batch::TrialKey> all = vb::batch::ExpandMatrix(spec);
+  const std::vector<vb::batch::TrialKey> mine = vb::batch::SelectShard(all, shard);
+  const int jobs = o.jobs > 0 ? o.jobs : DefaultJobs();
+  const std::string settings = "time_limit_s=" + vb::io::FormatDouble(o.time_limit_s) +
+                               " traj_every=" + std::to_string(o.traj_every);
+  const int lock_fd = PrepareOutputDir(o, settings);
+  const vb::io::Provenance build = ProvenanceFor(spec.tasks.front(), all.front());
+  const Plan plan = PlanResume(o, spec, mine, build);
+
+  std::printf("vb_batch: %zu trials in matrix, shard %d/%d: %zu trials, %zu already done, "
+              "%zu to run on %d jobs -> %s\n",
+              all.size(), shard.index, shard.count, mine.size(), plan.done_before,
+              plan.todo.size(), jobs, o.out_dir.c_str());
+  std::fflush(stdout);
+  const RunCounts c = RunTrials(o, spec, plan.todo, jobs, lock_fd);
+  const std::vector<vb::batch::TrialRow> rows =
+      WriteIndex(o, spec, all, mine, shard, settings, build);
+
+  std::map<std::string, int> counts;
+  for (const vb::batch::TrialRow& r : rows) ++counts[r.status];
   std::string summary;
   for (const auto& [status, n] : counts) {
     summary += (summary.empty() ? "" : ", ") + status + " " + std::to_string(n);
   }
   std::printf("vb_batch: %zu/%zu trials recorded (%s); ran %zu in %.1f s; index %s\n",
-              rows.size(), mine.size(), summary.c_str(), finished,
+              rows.size(), mine.size(), summary.c_str(), c.finished,
               std::chrono::duration<double>(Clock::now() - t0).count(),
-              (out / "index.csv").c_str());
+              (fs::path(o.out_dir) / "index.csv").c_str());
   if (g_stop_signal != 0) {
     std::printf("vb_batch: interrupted by signal %d; run the same command again to resume\n",
                 static_cast<int>(g_stop_signal));
     return 128 + g_stop_signal;
   }
-  if (crashed > 0) {
+  if (c.crashed > 0) {
     std::printf("vb_batch: %zu trial(s) crashed; run the same command again to retry them\n",
-                crashed);
+                c.crashed);
   }
   return 0;
 }
