@@ -13,6 +13,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "io/build_info.h"
 #include "vb/engine/error.h"
 
 namespace vb::io {
@@ -133,7 +134,7 @@ uint64_t Fnv1a64(const std::string& bytes, uint64_t hash) {
 Provenance MakeProvenance(const terrain::TaskSpec& task, const runner::TrialSpec& spec) {
   Provenance p;
   p.vb_version = VB_VERSION;
-  p.git_commit = VB_GIT_COMMIT;
+  p.git_commit = BuildGitCommit();
   p.task_file = task.source_file;
   p.vehicle = spec.vehicle;
   p.system = spec.system;

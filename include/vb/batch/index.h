@@ -1,0 +1,60 @@
+// The index of a batch output directory (DIR/index.csv): one row per trial with its matrix
+// position, environment labels, outcome, the metrics the report needs and provenance. The
+// per-trial JSON files are the source of truth; the index is rebuilt from them on every run.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace vb::batch {
+
+// Statuses of a trial in a batch: the runner's five (success, rollover, stuck, timeout,
+// sim_error) plus two for trials that did not produce a runner result:
+//   error   - the trial could not be set up (bad or unsupported input, e.g. deformable terrain
+//             before the soil solver exists); deterministic, not retried on resume
+//   crashed - the trial's worker process died (signal, internal error, wall-clock limit); retried
+//             when the same batch is run again
+bool IsRunnerStatus(const std::string& status);
+bool IsKnownStatus(const std::string& status);
+
+struct TrialRow {
+  size_t matrix_index = 0;
+  std::string task;
+  int pair = 0;
+  uint64_t seed = 0;
+  std::string vehicle;
+  std::string system;
+  double scale = 1.0;
+  std::string elevation;
+  std::string terrain;
+  std::string density;
+  std::string status;
+  double traversal_time_s = 0.0;     // NaN unless success
+  double sim_time_s = 0.0;           // NaN for error/crashed
+  double final_goal_distance_m = 0.0;
+  double mean_abs_roll_deg = 0.0;    // per-trial mean of |roll| over all steps
+  double mean_abs_pitch_deg = 0.0;
+  std::string task_fnv1a64;
+  std::string vb_version;
+  std::string git_commit;
+  std::string host;
+  double wall_time_s = 0.0;
+  std::string task_file;
+  std::string message;
+};
+
+// File stem of a row's trial files: <task>_p<K>_s<seed>_<vehicle>_<system> (as TrialStem).
+std::string RowStem(const TrialRow& row);
+
+// CSV text of the index (header + rows in the given order). Numbers print with "%.17g", NaN as
+// an empty field.
+std::string IndexCsv(const std::vector<TrialRow>& rows);
+// Parses IndexCsv output; throws InputError naming `source` and the line on malformed input.
+std::vector<TrialRow> ParseIndexCsv(const std::string& text, const std::string& source);
+
+// The fields that must agree between two records of the same trial (everything except host and
+// wall time): used by merge to tell a harmless duplicate from a conflict.
+std::string StableFields(const TrialRow& row);
+
+}  // namespace vb::batch

@@ -1,0 +1,212 @@
+#include "vb/batch/index.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
+
+#include "vb/engine/error.h"
+
+namespace vb::batch {
+namespace {
+
+const char* const kColumns[] = {
+    "matrix_index", "task",       "pair",          "seed",       "vehicle",
+    "system",       "scale",      "elevation",     "terrain",    "density",
+    "status",       "traversal_time_s", "sim_time_s", "final_goal_distance_m",
+    "mean_abs_roll_deg", "mean_abs_pitch_deg", "task_fnv1a64", "vb_version", "git_commit",
+    "host",         "wall_time_s", "task_file",    "message"};
+constexpr size_t kNumColumns = sizeof(kColumns) / sizeof(kColumns[0]);
+
+std::string Num(double x) {
+  if (!std::isfinite(x)) return "";
+  char buf[32];
+  std::snprintf(buf, sizeof(buf), "%.17g", x);
+  return buf;
+}
+
+std::string Field(const std::string& s) {
+  if (s.find_first_of(",\"\r\n") == std::string::npos) return s;
+  std::string out = "\"";
+  for (char c : s) {
+    if (c == '"') out += '"';
+    out += c;
+  }
+  return out + "\"";
+}
+
+// Splits CSV text into records of fields (RFC 4180 quoting; newlines allowed inside quotes).
+// Each record remembers its 1-based starting line.
+struct Record {
+  int line = 0;
+  std::vector<std::string> fields;
+};
+std::vector<Record> SplitCsv(const std::string& text, const std::string& source) {
+  std::vector<Record> records;
+  Record rec;
+  std::string field;
+  bool quoted = false, field_started = false;
+  int line = 1;
+  rec.line = 1;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (quoted) {
+      if (c == '"') {
+        if (i + 1 < text.size() && text[i + 1] == '"') {
+          field += '"';
+          ++i;
+        } else {
+          quoted = false;
+        }
+      } else {
+        if (c == '\n') ++line;
+        field += c;
+      }
+    } else if (c == '"' && field.empty() && !field_started) {
+      quoted = true;
+      field_started = true;
+    } else if (c == ',') {
+      rec.fields.push_back(field);
+      field.clear();
+      field_started = false;
+    } else if (c == '\n' || c == '\r') {
+      if (c == '\r' && i + 1 < text.size() && text[i + 1] == '\n') ++i;
+      rec.fields.push_back(field);
+      records.push_back(rec);
+      rec = Record();
+      field.clear();
+      field_started = false;
+      rec.line = ++line;
+    } else {
+      field += c;
+      field_started = true;
+    }
+  }
+  if (quoted) throw InputError(source, line, "", "unterminated quoted field");
+  if (field_started || !field.empty() || !rec.fields.empty()) {
+    rec.fields.push_back(field);
+    records.push_back(rec);
+  }
+  return records;
+}
+
+double ParseDouble(const std::string& s, const std::string& source, int line, const char* key) {
+  if (s.empty()) return std::numeric_limits<double>::quiet_NaN();
+  char* end = nullptr;
+  errno = 0;
+  const double v = std::strtod(s.c_str(), &end);
+  if (*end != '\0' || errno != 0) {
+    throw InputError(source, line, key, "'" + s + "' is not a number");
+  }
+  return v;
+}
+
+uint64_t ParseU64(const std::string& s, const std::string& source, int line, const char* key) {
+  char* end = nullptr;
+  errno = 0;
+  const unsigned long long v = std::strtoull(s.c_str(), &end, 10);
+  if (s.empty() || *end != '\0' || errno != 0 || s[0] == '-') {
+    throw InputError(source, line, key, "'" + s + "' is not a non-negative integer");
+  }
+  return v;
+}
+
+}  // namespace
+
+bool IsRunnerStatus(const std::string& s) {
+  return s == "success" || s == "rollover" || s == "stuck" || s == "timeout" || s == "sim_error";
+}
+bool IsKnownStatus(const std::string& s) {
+  return IsRunnerStatus(s) || s == "error" || s == "crashed";
+}
+
+std::string RowStem(const TrialRow& r) {
+  return r.task + "_p" + std::to_string(r.pair) + "_s" + std::to_string(r.seed) + "_" +
+         r.vehicle + "_" + r.system;
+}
+
+std::string IndexCsv(const std::vector<TrialRow>& rows) {
+  std::string text;
+  for (size_t i = 0; i < kNumColumns; ++i) text += std::string(i ? "," : "") + kColumns[i];
+  text += "\n";
+  for (const TrialRow& r : rows) {
+    text += std::to_string(r.matrix_index) + "," + Field(r.task) + "," + std::to_string(r.pair) +
+            "," + std::to_string(r.seed) + "," + Field(r.vehicle) + "," + Field(r.system) + "," +
+            Num(r.scale) + "," + Field(r.elevation) + "," + Field(r.terrain) + "," +
+            Field(r.density) + "," + Field(r.status) + "," + Num(r.traversal_time_s) + "," +
+            Num(r.sim_time_s) + "," + Num(r.final_goal_distance_m) + "," +
+            Num(r.mean_abs_roll_deg) + "," + Num(r.mean_abs_pitch_deg) + "," +
+            Field(r.task_fnv1a64) + "," + Field(r.vb_version) + "," + Field(r.git_commit) + "," +
+            Field(r.host) + "," + Num(r.wall_time_s) + "," + Field(r.task_file) + "," +
+            Field(r.message) + "\n";
+  }
+  return text;
+}
+
+std::vector<TrialRow> ParseIndexCsv(const std::string& text, const std::string& source) {
+  const std::vector<Record> records = SplitCsv(text, source);
+  if (records.empty()) throw InputError(source, 1, "", "empty index (no header)");
+  const Record& header = records.front();
+  if (header.fields.size() != kNumColumns) {
+    throw InputError(source, 1, "", "header has " + std::to_string(header.fields.size()) +
+                                        " columns, expected " + std::to_string(kNumColumns));
+  }
+  for (size_t i = 0; i < kNumColumns; ++i) {
+    if (header.fields[i] != kColumns[i]) {
+      throw InputError(source, 1, header.fields[i],
+                       std::string("unexpected column; expected '") + kColumns[i] + "'");
+    }
+  }
+  std::vector<TrialRow> rows;
+  for (size_t i = 1; i < records.size(); ++i) {
+    const Record& rec = records[i];
+    if (rec.fields.size() == 1 && rec.fields[0].empty()) continue;  // blank line
+    if (rec.fields.size() != kNumColumns) {
+      throw InputError(source, rec.line, "", "row has " + std::to_string(rec.fields.size()) +
+                                                 " fields, expected " +
+                                                 std::to_string(kNumColumns));
+    }
+    const std::vector<std::string>& f = rec.fields;
+    const int ln = rec.line;
+    TrialRow r;
+    r.matrix_index = ParseU64(f[0], source, ln, "matrix_index");
+    r.task = f[1];
+    r.pair = static_cast<int>(ParseU64(f[2], source, ln, "pair"));
+    r.seed = ParseU64(f[3], source, ln, "seed");
+    r.vehicle = f[4];
+    r.system = f[5];
+    r.scale = ParseDouble(f[6], source, ln, "scale");
+    r.elevation = f[7];
+    r.terrain = f[8];
+    r.density = f[9];
+    r.status = f[10];
+    if (!IsKnownStatus(r.status)) {
+      throw InputError(source, ln, "status", "unknown status '" + r.status + "'");
+    }
+    r.traversal_time_s = ParseDouble(f[11], source, ln, "traversal_time_s");
+    r.sim_time_s = ParseDouble(f[12], source, ln, "sim_time_s");
+    r.final_goal_distance_m = ParseDouble(f[13], source, ln, "final_goal_distance_m");
+    r.mean_abs_roll_deg = ParseDouble(f[14], source, ln, "mean_abs_roll_deg");
+    r.mean_abs_pitch_deg = ParseDouble(f[15], source, ln, "mean_abs_pitch_deg");
+    r.task_fnv1a64 = f[16];
+    r.vb_version = f[17];
+    r.git_commit = f[18];
+    r.host = f[19];
+    r.wall_time_s = ParseDouble(f[20], source, ln, "wall_time_s");
+    r.task_file = f[21];
+    r.message = f[22];
+    rows.push_back(std::move(r));
+  }
+  return rows;
+}
+
+std::string StableFields(const TrialRow& r) {
+  TrialRow copy = r;
+  copy.host.clear();
+  copy.wall_time_s = 0.0;
+  copy.task_file.clear();  // the same task may be reached by another relative path
+  return IndexCsv({copy});
+}
+
+}  // namespace vb::batch

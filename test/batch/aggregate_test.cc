@@ -1,0 +1,120 @@
+// Aggregation rules on hand-made result sets whose answers are worked out by hand
+// (docs/reports.md): denominators, successful-only traversal/roll/pitch, per-trial means,
+// population variance, factor breakdowns.
+#include "vb/batch/aggregate.h"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+namespace vb::batch {
+namespace {
+
+TrialRow Row(const std::string& system, const std::string& status, double t, double roll,
+             double pitch, const std::string& elevation = "low",
+             const std::string& terrain = "rigid", const std::string& density = "sparse") {
+  TrialRow r;
+  r.system = system;
+  r.vehicle = "hmmwv";
+  r.status = status;
+  r.traversal_time_s = status == "success" ? t : std::nan("");
+  r.mean_abs_roll_deg = roll;
+  r.mean_abs_pitch_deg = pitch;
+  r.elevation = elevation;
+  r.terrain = terrain;
+  r.density = density;
+  return r;
+}
+
+// System "pid": 2 successes (t 10 and 20 s; roll 2 and 4 deg; pitch 4 and 8 deg), a rollover
+// (roll 40: must not enter the roll statistics), a stuck, an error and a crashed trial.
+std::vector<TrialRow> HandMadeSet() {
+  return {Row("pid", "success", 10.0, 2.0, 4.0, "low"),
+          Row("pid", "success", 20.0, 4.0, 8.0, "high"),
+          Row("pid", "rollover", 0.0, 40.0, 9.0, "high"),
+          Row("pid", "stuck", 0.0, 1.0, 1.0, "low"),
+          Row("pid", "error", 0.0, std::nan(""), std::nan(""), "mid", "deformable"),
+          Row("pid", "crashed", 0.0, std::nan(""), std::nan(""), "mid"),
+          Row("eh", "timeout", 0.0, 3.0, 3.0, "low"),
+          Row("eh", "sim_error", 0.0, 3.0, 3.0, "low")};
+}
+
+TEST(AggregateTest, Table1CountsOnlyTrialsThatRan) {
+  const Report rep = BuildReport(HandMadeSet());
+  ASSERT_EQ(rep.systems, (std::vector<std::string>{"eh/hmmwv", "pid/hmmwv"}));
+  const GroupStats& pid = rep.table1[1].stats;
+  EXPECT_EQ(pid.trials, 6);
+  EXPECT_EQ(pid.ran, 4);
+  EXPECT_EQ(pid.error, 1);
+  EXPECT_EQ(pid.crashed, 1);
+  EXPECT_DOUBLE_EQ(pid.success_pct, 50.0);
+  EXPECT_DOUBLE_EQ(pid.rollover_pct, 25.0);
+  EXPECT_DOUBLE_EQ(pid.stuck_pct, 25.0);
+  EXPECT_DOUBLE_EQ(pid.timeout_pct, 0.0);
+  const GroupStats& eh = rep.table1[0].stats;
+  EXPECT_DOUBLE_EQ(eh.timeout_pct, 50.0);
+  EXPECT_DOUBLE_EQ(eh.sim_error_pct, 50.0);
+  EXPECT_DOUBLE_EQ(eh.success_pct, 0.0);
+}
+
+TEST(AggregateTest, TimeRollPitchOverSuccessfulTrialsWithPopulationVariance) {
+  const GroupStats pid = BuildReport(HandMadeSet()).table1[1].stats;
+  EXPECT_DOUBLE_EQ(pid.traversal_mean_s, 15.0);
+  EXPECT_DOUBLE_EQ(pid.traversal_var_s2, 25.0);   // ((10-15)^2 + (20-15)^2) / 2
+  EXPECT_DOUBLE_EQ(pid.roll_mean_deg, 3.0);
+  EXPECT_DOUBLE_EQ(pid.roll_var_deg2, 1.0);
+  EXPECT_DOUBLE_EQ(pid.pitch_mean_deg, 6.0);
+  EXPECT_DOUBLE_EQ(pid.pitch_var_deg2, 4.0);
+  // No success: undefined, not zero.
+  const GroupStats eh = BuildReport(HandMadeSet()).table1[0].stats;
+  EXPECT_TRUE(std::isnan(eh.traversal_mean_s));
+  EXPECT_TRUE(std::isnan(eh.roll_mean_deg));
+}
+
+TEST(AggregateTest, FactorBreakdownByElevationAndTerrain) {
+  const Report rep = BuildReport(HandMadeSet());
+  auto find = [&](const std::string& f, const std::string& l, const std::string& s) {
+    for (const FactorRow& r : rep.factors) {
+      if (r.factor == f && r.level == l && r.system == s) return r.stats;
+    }
+    ADD_FAILURE() << f << " " << l << " " << s;
+    return GroupStats{};
+  };
+  const GroupStats low = find("elevation", "low", "pid/hmmwv");
+  EXPECT_EQ(low.ran, 2);
+  EXPECT_DOUBLE_EQ(low.success_pct, 50.0);
+  EXPECT_DOUBLE_EQ(low.traversal_mean_s, 10.0);
+  EXPECT_DOUBLE_EQ(low.traversal_var_s2, 0.0);
+  const GroupStats high = find("elevation", "high", "pid/hmmwv");
+  EXPECT_DOUBLE_EQ(high.success_pct, 50.0);
+  EXPECT_DOUBLE_EQ(high.roll_mean_deg, 4.0);
+  const GroupStats mid = find("elevation", "mid", "pid/hmmwv");
+  EXPECT_EQ(mid.trials, 2);
+  EXPECT_EQ(mid.ran, 0);
+  EXPECT_TRUE(std::isnan(mid.success_pct));
+  const GroupStats deformable = find("terrain", "deformable", "pid/hmmwv");
+  EXPECT_EQ(deformable.error, 1);
+  // Canonical level order, every system in each level.
+  ASSERT_GE(rep.factors.size(), 6u);
+  EXPECT_EQ(rep.factors[0].level, "low");
+  EXPECT_EQ(rep.factors[2].level, "mid");
+  EXPECT_EQ(rep.factors[4].level, "high");
+}
+
+TEST(AggregateTest, TextOutputsAreDeterministicAndOrderIndependent) {
+  std::vector<TrialRow> rows = HandMadeSet();
+  const Report a = BuildReport(rows);
+  std::reverse(rows.begin(), rows.end());
+  // Row order changes neither counts nor statistics (the sums are over two values here, so
+  // exact), hence not the text.
+  const Report b = BuildReport(rows);
+  EXPECT_EQ(Table1Csv(a), Table1Csv(b));
+  EXPECT_EQ(FactorsCsv(a), FactorsCsv(b));
+  EXPECT_EQ(ReportMarkdown(a), ReportMarkdown(b));
+  EXPECT_NE(ReportMarkdown(a).find("| pid/hmmwv | 6 | 4 | 50.0 | 25.0 | 25.0 | 0.0 | 0.0 | 1 | 1 |"),
+            std::string::npos)
+      << ReportMarkdown(a);
+}
+
+}  // namespace
+}  // namespace vb::batch

@@ -1,0 +1,367 @@
+// vb_batch: runs a benchmark matrix (environments x pairs x vehicles x systems x seeds) in
+// parallel worker processes, one forked process per trial, into one resumable output directory.
+// docs/batch.md describes the flags, the directory layout, resume and shards. This file: the
+// output directory (lock, settings), the resume scan, the scheduler with its progress display,
+// and the index.
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "io/batch_io.h"
+#include "io/result_io.h"
+#include "io/yaml_strict.h"
+#include "options.h"
+#include "setup.h"
+#include "vb/batch/index.h"
+#include "vb/batch/matrix.h"
+#include "vb/batch/resume.h"
+#include "vb/engine/error.h"
+#include "worker.h"
+
+namespace vb_batch {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+std::string Hms(double s) {
+  if (!(s >= 0.0) || s > 1e7) return "--:--:--";
+  const long t = std::lround(s);
+  char buf[32];
+  std::snprintf(buf, sizeof(buf), "%02ld:%02ld:%02ld", t / 3600, (t / 60) % 60, t % 60);
+  return buf;
+}
+
+// Set by SIGINT/SIGTERM (Ctrl-C, scancel, a Slurm time limit): stop starting trials, kill the
+// running workers (their trials have no record and run again on resume), write the index, exit.
+volatile std::sig_atomic_t g_stop_signal = 0;
+extern "C" void OnStopSignal(int sig) { g_stop_signal = sig; }
+
+struct Running {
+  vb::batch::TrialKey key;
+  std::string stem;
+  Clock::time_point start;
+};
+
+// Creates DIR and DIR/trials, takes DIR's lock (held until this process ends, even by kill -9),
+// removes temporary files of writers killed mid-write, and checks that the result-changing
+// settings match earlier runs into DIR. Returns the lock's file descriptor.
+int PrepareOutputDir(const Options& o, const std::string& settings) {
+  const fs::path out = o.out_dir;
+  std::error_code ec;
+  fs::create_directories(out / "trials", ec);
+  if (ec) throw vb::InputError(o.out_dir, 0, "--out", "cannot create directory: " + ec.message());
+  const std::string lock_path = (out / ".lock").string();
+  const int lock_fd = ::open(lock_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (lock_fd < 0 || ::flock(lock_fd, LOCK_EX | LOCK_NB) != 0) {
+    throw vb::InputError(o.out_dir, 0, "--out", "another vb_batch is running on this directory");
+  }
+  for (const fs::directory_entry& d : fs::directory_iterator(out / "trials")) {
+    if (d.path().filename().string().find(".tmp.") != std::string::npos) fs::remove(d.path(), ec);
+  }
+  const fs::path settings_path = out / "settings.txt";
+  if (fs::exists(settings_path)) {
+    std::FILE* f = std::fopen(settings_path.c_str(), "rb");
+    char buf[256] = {0};
+    const size_t n = f ? std::fread(buf, 1, sizeof(buf) - 1, f) : 0;
+    if (f) std::fclose(f);
+    std::string old(buf, n);
+    while (!old.empty() && old.back() == '\n') old.pop_back();
+    if (old != settings) {
+      throw vb::InputError(settings_path.string(), 1, "settings",
+                           "results in this directory were made with '" + old + "', this run "
+                           "uses '" + settings + "'; use another --out");
+    }
+  } else {
+    vb::io::WriteFileAtomic(settings_path.string(), settings + "\n");
+  }
+  return lock_fd;
+}
+
+struct Plan {
+  std::vector<vb::batch::TrialKey> todo;
+  size_t done_before = 0;
+};
+
+// Resume: the trials of `mine` that still need to run (docs/batch.md "Resume"). Stale records
+// stop the batch unless --rerun-stale.
+Plan PlanResume(const Options& o, const vb::batch::MatrixSpec& spec,
+                const std::vector<vb::batch::TrialKey>& mine, const vb::io::Provenance& build) {
+  Plan plan;
+  std::vector<std::string> stale;
+  for (const vb::batch::TrialKey& k : mine) {
+    const std::string stem = vb::batch::TrialStem(spec, k);
+    const fs::path json = fs::path(o.out_dir) / "trials" / (stem + ".json");
+    vb::batch::TrialRow record;
+    bool have_record = false;
+    if (fs::exists(json)) {
+      try {
+        record = vb::io::ReadTrialJson(json.string());
+        have_record = true;
+      } catch (const vb::InputError& e) {
+        std::fprintf(stderr, "vb_batch: warning: unreadable record, re-running: %s\n", e.what());
+      }
+    }
+    const vb::batch::ResumeDecision d =
+        vb::batch::DecideResume(have_record ? &record : nullptr,
+                                spec.tasks[k.task_index].task_fnv1a64, build.git_commit,
+                                build.vb_version);
+    if (d.action == vb::batch::ResumeAction::kSkip) {
+      ++plan.done_before;
+      continue;
+    }
+    if (d.action == vb::batch::ResumeAction::kStale) stale.push_back(stem + ": " + d.reason);
+    plan.todo.push_back(k);
+  }
+  if (!stale.empty() && !o.rerun_stale) {
+    std::string msg = std::to_string(stale.size()) +
+                      " finished trial(s) come from another task version or build:\n";
+    for (size_t i = 0; i < stale.size() && i < 10; ++i) msg += "  " + stale[i] + "\n";
+    if (stale.size() > 10) msg += "  ...\n";
+    msg += "use --rerun-stale to replace them, or another --out";
+    throw vb::InputError(o.out_dir, 0, "--out", msg);
+  }
+  return plan;
+}
+
+// One line of progress on a terminal: bar, done/total, successes, elapsed time and ETA.
+class ProgressBar {
+ public:
+  ProgressBar(bool enabled, size_t total) : enabled_(enabled), total_(total) {}
+  void Draw(size_t finished, size_t successes, bool force) {
+    if (!enabled_) return;
+    const Clock::time_point now = Clock::now();
+    if (!force && now - last_draw_ < std::chrono::milliseconds(500)) return;
+    last_draw_ = now;
+    const double elapsed = std::chrono::duration<double>(now - start_).count();
+    const double eta = finished > 0 ? elapsed / finished * (total_ - finished) : -1.0;
+    const int width = 30;
+    const int filled = total_ ? static_cast<int>(width * finished / total_) : width;
+    std::fprintf(stderr, "\r[%s%s] %zu/%zu  success %zu (%.0f%%)  elapsed %s  ETA %s ",
+                 std::string(filled, '#').c_str(), std::string(width - filled, '.').c_str(),
+                 finished, total_, successes, finished ? 100.0 * successes / finished : 0.0,
+                 Hms(elapsed).c_str(), Hms(eta).c_str());
+    std::fflush(stderr);
+  }
+  void Finish() {
+    if (enabled_) std::fputc('\n', stderr);
+  }
+
+ private:
+  bool enabled_;
+  size_t total_;
+  Clock::time_point start_ = Clock::now();
+  Clock::time_point last_draw_ = start_ - std::chrono::seconds(10);
+};
+
+struct RunCounts {
+  size_t finished = 0, successes = 0, crashed = 0;
+};
+
+// Runs `todo` with up to `jobs` forked workers at a time until done or a stop signal; a worker
+// that leaves no record becomes a `crashed` record.
+RunCounts RunTrials(const Options& o, const vb::batch::MatrixSpec& spec,
+                    const std::vector<vb::batch::TrialKey>& todo, int jobs, int lock_fd) {
+  const fs::path trials_dir = fs::path(o.out_dir) / "trials";
+  const bool tty = !o.quiet && ::isatty(STDERR_FILENO);
+  ProgressBar bar(tty, todo.size());
+  struct sigaction sa {};
+  sa.sa_handler = OnStopSignal;
+  sigemptyset(&sa.sa_mask);
+  ::sigaction(SIGINT, &sa, nullptr);
+  ::sigaction(SIGTERM, &sa, nullptr);
+
+  std::map<pid_t, Running> running;
+  size_t next = 0;
+  RunCounts c;
+  while (next < todo.size() || !running.empty()) {
+    if (g_stop_signal != 0) {
+      for (const auto& [p, r] : running) ::kill(p, SIGKILL);
+      for (const auto& [p, r] : running) ::waitpid(p, nullptr, 0);
+      break;
+    }
+    while (next < todo.size() && static_cast<int>(running.size()) < jobs) {
+      const vb::batch::TrialKey& k = todo[next++];
+      const std::string stem = vb::batch::TrialStem(spec, k);
+      std::fflush(stdout);
+      std::fflush(stderr);
+      const pid_t pid = ::fork();
+      if (pid < 0) throw std::runtime_error(std::string("fork failed: ") + std::strerror(errno));
+      if (pid == 0) {
+        ::signal(SIGINT, SIG_DFL);
+        ::signal(SIGTERM, SIG_DFL);
+        ::close(lock_fd);
+        RunWorker(o, spec.tasks[k.task_index], k, (trials_dir / stem).string());
+      }
+      running[pid] = Running{k, stem, Clock::now()};
+    }
+    int status = 0;
+    const pid_t pid = ::waitpid(-1, &status, WNOHANG);
+    if (pid == 0) {   // nothing finished: enforce the wall-clock limit, redraw, poll again
+      if (o.trial_timeout_s > 0.0) {
+        for (const auto& [p, r] : running) {
+          if (std::chrono::duration<double>(Clock::now() - r.start).count() > o.trial_timeout_s) {
+            ::kill(p, SIGKILL);
+          }
+        }
+      }
+      bar.Draw(c.finished, c.successes, false);
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      continue;
+    }
+    if (pid < 0) {
+      if (errno == EINTR) continue;
+      throw std::runtime_error(std::string("waitpid failed: ") + std::strerror(errno));
+    }
+    auto it = running.find(pid);
+    if (it == running.end()) continue;
+    const Running r = it->second;
+    running.erase(it);
+    const double wall_s = std::chrono::duration<double>(Clock::now() - r.start).count();
+    const std::string json = (trials_dir / (r.stem + ".json")).string();
+    std::string result;
+    bool have_record = WIFEXITED(status) && WEXITSTATUS(status) == 0 && fs::exists(json);
+    if (have_record) {
+      try {
+        result = vb::io::ReadTrialJson(json).status;
+      } catch (const vb::InputError&) {
+        have_record = false;
+      }
+    }
+    if (!have_record) {
+      std::string why = DescribeWaitStatus(status);
+      if (o.trial_timeout_s > 0.0 && wall_s > o.trial_timeout_s && WIFSIGNALED(status) &&
+          WTERMSIG(status) == SIGKILL) {
+        why = "wall-clock limit of " + vb::io::FormatDouble(o.trial_timeout_s) + " s exceeded";
+      }
+      vb::io::WriteUnrunTrialJson(json, spec.tasks[r.key.task_index].name, r.key.pair,
+                                  ProvenanceFor(spec.tasks[r.key.task_index], r.key), "crashed",
+                                  why);
+      result = "crashed";
+      ++c.crashed;
+    }
+    ++c.finished;
+    if (result == "success") ++c.successes;
+    if (!o.quiet && !tty) {
+      std::printf("[%zu/%zu] %s %s (%.1f s wall)\n", c.finished, todo.size(), r.stem.c_str(),
+                  result.c_str(), wall_s);
+      std::fflush(stdout);
+    }
+    bar.Draw(c.finished, c.successes, c.finished == todo.size());
+  }
+  bar.Finish();
+  return c;
+}
+
+// The index (rebuilt from the records of this shard's trials, in matrix order) and batch.json.
+// Returns the rows.
+std::vector<vb::batch::TrialRow> WriteIndex(const Options& o, const vb::batch::MatrixSpec& spec,
+                                            const std::vector<vb::batch::TrialKey>& all,
+                                            const std::vector<vb::batch::TrialKey>& mine,
+                                            const vb::batch::Shard& shard,
+                                            const std::string& settings,
+                                            const vb::io::Provenance& build) {
+  const fs::path out = o.out_dir;
+  std::vector<vb::batch::TrialRow> rows;
+  for (const vb::batch::TrialKey& k : mine) {
+    const fs::path json = out / "trials" / (vb::batch::TrialStem(spec, k) + ".json");
+    if (!fs::exists(json)) continue;
+    vb::batch::TrialRow r = vb::io::ReadTrialJson(json.string());
+    const vb::batch::MatrixTask& t = spec.tasks[k.task_index];
+    r.matrix_index = k.matrix_index;
+    r.scale = t.scale;
+    r.elevation = t.elevation;
+    r.terrain = t.terrain;
+    r.density = t.density;
+    rows.push_back(std::move(r));
+  }
+  vb::io::WriteFileAtomic((out / "index.csv").string(), vb::batch::IndexCsv(rows));
+  vb::io::BatchInfo info;
+  info.matrix_fingerprint = vb::batch::MatrixFingerprint(spec, all);
+  info.matrix_trials = all.size();
+  info.shard = std::to_string(shard.index) + "/" + std::to_string(shard.count);
+  info.shard_trials = mine.size();
+  info.settings = settings;
+  info.vb_version = build.vb_version;
+  info.git_commit = build.git_commit;
+  vb::io::WriteBatchJson(info, (out / "batch.json").string());
+  return rows;
+}
+
+int Run(const Options& o) {
+  const Clock::time_point t0 = Clock::now();
+  const vb::batch::Shard shard = vb::batch::ParseShard(o.shard);
+  const vb::batch::MatrixSpec spec = BuildSpec(o, ResolveEnvs(o.envs));
+  const std::vector<vb::batch::TrialKey> all = vb::batch::ExpandMatrix(spec);
+  const std::vector<vb::batch::TrialKey> mine = vb::batch::SelectShard(all, shard);
+  const int jobs = o.jobs > 0 ? o.jobs : DefaultJobs();
+  const std::string settings = "time_limit_s=" + vb::io::FormatDouble(o.time_limit_s) +
+                               " traj_every=" + std::to_string(o.traj_every);
+  const int lock_fd = PrepareOutputDir(o, settings);
+  const vb::io::Provenance build = ProvenanceFor(spec.tasks.front(), all.front());
+  const Plan plan = PlanResume(o, spec, mine, build);
+
+  std::printf("vb_batch: %zu trials in matrix, shard %d/%d: %zu trials, %zu already done, "
+              "%zu to run on %d jobs -> %s\n",
+              all.size(), shard.index, shard.count, mine.size(), plan.done_before,
+              plan.todo.size(), jobs, o.out_dir.c_str());
+  std::fflush(stdout);
+  const RunCounts c = RunTrials(o, spec, plan.todo, jobs, lock_fd);
+  const std::vector<vb::batch::TrialRow> rows =
+      WriteIndex(o, spec, all, mine, shard, settings, build);
+
+  std::map<std::string, int> counts;
+  for (const vb::batch::TrialRow& r : rows) ++counts[r.status];
+  std::string summary;
+  for (const auto& [status, n] : counts) {
+    summary += (summary.empty() ? "" : ", ") + status + " " + std::to_string(n);
+  }
+  std::printf("vb_batch: %zu/%zu trials recorded (%s); ran %zu in %.1f s; index %s\n",
+              rows.size(), mine.size(), summary.c_str(), c.finished,
+              std::chrono::duration<double>(Clock::now() - t0).count(),
+              (fs::path(o.out_dir) / "index.csv").c_str());
+  if (g_stop_signal != 0) {
+    std::printf("vb_batch: interrupted by signal %d; run the same command again to resume\n",
+                static_cast<int>(g_stop_signal));
+    return 128 + g_stop_signal;
+  }
+  if (c.crashed > 0) {
+    std::printf("vb_batch: %zu trial(s) crashed; run the same command again to retry them\n",
+                c.crashed);
+  }
+  return 0;
+}
+
+}  // namespace
+}  // namespace vb_batch
+
+int main(int argc, char** argv) {
+  try {
+    const vb_batch::Options options = vb_batch::ParseArgs(argc, argv);
+    if (options.help) {
+      std::fputs(vb_batch::kUsage, stdout);
+      return 0;
+    }
+    return vb_batch::Run(options);
+  } catch (const vb::InputError& e) {
+    std::fprintf(stderr, "vb_batch: error: %s\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "vb_batch: internal error: %s\n", e.what());
+    return 1;
+  }
+}

@@ -1,0 +1,39 @@
+// vb_batch command line: flags into an Options struct (strict: every error names the flag).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "vb/engine/runner/episode.h"
+
+namespace vb_batch {
+
+extern const char* const kUsage;
+
+struct Options {
+  std::vector<std::string> envs;
+  std::string pairs = "all";
+  std::string vehicles = "hmmwv";
+  std::string systems = "pid";
+  std::string seeds = "0";
+  std::string scales;
+  std::string out_dir;
+  int jobs = 0;
+  std::string shard = "0/1";
+  double time_limit_s = vb::runner::EpisodeRules().time_limit_s;
+  int traj_every = 1;
+  double trial_timeout_s = 0.0;
+  bool rerun_stale = false;
+  bool quiet = false;
+  bool help = false;
+};
+
+// Throws vb::InputError naming the flag.
+Options ParseArgs(int argc, char** argv);
+
+std::vector<std::string> Split(const std::string& s, char sep);
+double ParseDouble(const std::string& flag, const std::string& text);      // >= 0
+std::vector<uint64_t> ParseIntList(const std::string& flag, const std::string& text);  // "0,3,5-9"
+
+}  // namespace vb_batch

@@ -1,0 +1,151 @@
+#include "setup.h"
+
+#include <glob.h>
+#include <sched.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+#include "io/task_io.h"
+#include "io/vehicle_io.h"
+#include "vb/controllers/controller.h"
+#include "vb/engine/error.h"
+#include "vb/engine/runner/episode.h"
+
+namespace vb_batch {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string Join(const std::vector<std::string>& v) {
+  std::string s;
+  for (const std::string& x : v) s += (s.empty() ? "" : ", ") + x;
+  return s;
+}
+
+// Names from a LIST|all flag, each checked against `valid`.
+std::vector<std::string> NameList(const std::string& flag, const std::string& text,
+                                  const std::vector<std::string>& valid) {
+  if (text == "all") return valid;
+  std::vector<std::string> out = Split(text, ',');
+  for (const std::string& n : out) {
+    if (std::find(valid.begin(), valid.end(), n) == valid.end()) {
+      throw vb::InputError("", 0, flag, "unknown name '" + n + "'; valid: " + Join(valid));
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+// Task files named by ENV arguments: files as given, globs expanded, directories' *.yaml.
+// Sorted and de-duplicated (by absolute path). A name that matches nothing is bad input.
+std::vector<std::string> ResolveEnvs(const std::vector<std::string>& envs) {
+  std::vector<std::string> files;
+  for (const std::string& e : envs) {
+    std::error_code ec;
+    if (fs::is_directory(e, ec)) {
+      size_t found = 0;
+      for (const fs::directory_entry& d : fs::directory_iterator(e)) {
+        if (d.is_regular_file() && d.path().extension() == ".yaml") {
+          files.push_back(d.path().string());
+          ++found;
+        }
+      }
+      if (found == 0) throw vb::InputError(e, 0, "ENV", "directory has no *.yaml task files");
+    } else if (e.find_first_of("*?[") != std::string::npos) {
+      glob_t g;
+      const int rc = ::glob(e.c_str(), 0, nullptr, &g);
+      if (rc != 0) {
+        ::globfree(&g);
+        throw vb::InputError(e, 0, "ENV", "glob matches no files");
+      }
+      for (size_t i = 0; i < g.gl_pathc; ++i) files.push_back(g.gl_pathv[i]);
+      ::globfree(&g);
+    } else if (fs::is_regular_file(e, ec)) {
+      files.push_back(e);
+    } else {
+      throw vb::InputError(e, 0, "ENV", "no such task file, directory or glob");
+    }
+  }
+  for (std::string& f : files) f = fs::absolute(f).lexically_normal().string();
+  std::sort(files.begin(), files.end());
+  files.erase(std::unique(files.begin(), files.end()), files.end());
+  return files;
+}
+
+std::string DataDir() {
+  const char* env = std::getenv("VB_DATA_DIR");
+  return env != nullptr ? env : VB_SOURCE_DIR "/data";
+}
+
+int DefaultJobs() {
+  cpu_set_t set;
+  if (::sched_getaffinity(0, sizeof(set), &set) == 0) return std::max(1, CPU_COUNT(&set));
+  return static_cast<int>(std::max(1L, ::sysconf(_SC_NPROCESSORS_ONLN)));
+}
+
+// Loads every task once (labels, pair count, hash). A task that fails to load is kept with its
+// error: its trials are recorded as `error`, the batch goes on.
+vb::batch::MatrixSpec BuildSpec(const Options& o, const std::vector<std::string>& files) {
+  vb::batch::MatrixSpec spec;
+  std::vector<double> scales;
+  if (!o.scales.empty()) {
+    for (const std::string& s : Split(o.scales, ',')) scales.push_back(ParseDouble("--scale", s));
+  }
+  for (const std::string& f : files) {
+    vb::batch::MatrixTask t;
+    t.path = f;
+    t.name = fs::path(f).stem().string();
+    vb::terrain::TaskSpec task;
+    task.source_file = f;
+    try {
+      task = vb::io::LoadTask(f);
+      t.name = task.name;
+      t.num_pairs = static_cast<int>(task.pairs.size());
+      t.scale = task.scale;
+      t.elevation = std::string(vb::terrain::ElevationLevelName(task.labels.elevation));
+      t.terrain = std::string(vb::terrain::TerrainTypeName(task.labels.terrain));
+      t.density = std::string(vb::terrain::ObstacleDensityName(task.labels.density));
+    } catch (const vb::InputError& e) {
+      t.load_error = e.what();
+      t.elevation = t.terrain = t.density = "unknown";
+      task.height_image.clear();
+    }
+    if (!scales.empty() && t.load_error.empty() &&
+        std::none_of(scales.begin(), scales.end(),
+                     [&](double s) { return std::abs(s - t.scale) <= 1e-9 * std::max(1.0, s); })) {
+      continue;
+    }
+    t.task_fnv1a64 = vb::io::MakeProvenance(task, vb::runner::TrialSpec()).task_fnv1a64;
+    spec.tasks.push_back(std::move(t));
+  }
+  if (!o.pairs.empty() && o.pairs != "all") {
+    for (uint64_t p : ParseIntList("--pairs", o.pairs)) {
+      if (p > 1000000) throw vb::InputError("", 0, "--pairs", "pair index too large");
+      spec.pairs.push_back(static_cast<int>(p));
+    }
+  }
+  spec.vehicles = NameList("--vehicles", o.vehicles, vb::io::VehicleNames(DataDir()));
+  spec.systems = NameList("--systems", o.systems, vb::controllers::ControllerNames());
+  for (uint64_t s : ParseIntList("--seeds", o.seeds)) spec.seeds.push_back(s);
+  return spec;
+}
+
+vb::io::Provenance ProvenanceFor(const vb::batch::MatrixTask& t,
+                                 const vb::batch::TrialKey& key) {
+  vb::terrain::TaskSpec dummy;
+  dummy.source_file = t.path;
+  vb::runner::TrialSpec spec;
+  spec.vehicle = key.vehicle;
+  spec.system = key.system;
+  spec.seed = key.seed;
+  vb::io::Provenance p = vb::io::MakeProvenance(dummy, spec);
+  p.task_fnv1a64 = t.task_fnv1a64;
+  return p;
+}
+
+}  // namespace vb_batch

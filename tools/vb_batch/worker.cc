@@ -1,0 +1,68 @@
+#include "worker.h"
+
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+
+#include "io/batch_io.h"
+#include "io/result_io.h"
+#include "io/task_io.h"
+#include "io/vehicle_io.h"
+#include "setup.h"
+#include "vb/engine/error.h"
+#include "vb/engine/runner/episode.h"
+
+namespace vb_batch {
+
+[[noreturn]] void RunWorker(const Options& o, const vb::batch::MatrixTask& t,
+                            const vb::batch::TrialKey& key, const std::string& stem_path) {
+  int code = 0;
+  try {
+    if (!t.load_error.empty()) {
+      vb::io::WriteUnrunTrialJson(stem_path + ".json", t.name, key.pair, ProvenanceFor(t, key),
+                                  "error", t.load_error);
+      std::_Exit(0);
+    }
+    try {
+      const vb::terrain::TaskSpec task = vb::io::LoadTask(t.path);
+      const vb::vehicles::VehicleParams params =
+          vb::io::LoadVehicle(DataDir() + "/vehicles/" + key.vehicle + ".yaml");
+      vb::runner::TrialSpec spec;
+      spec.pair_index = key.pair;
+      spec.seed = key.seed;
+      spec.system = key.system;
+      spec.vehicle = key.vehicle;
+      vb::runner::EpisodeRules rules;
+      rules.time_limit_s = o.time_limit_s;
+      rules.trajectory_every_n_steps = o.traj_every;
+      const vb::runner::TrialResult r = vb::runner::RunTrial(task, params, spec, rules);
+      // Trajectory first: a record's presence implies its trajectory is complete.
+      vb::io::WriteTrajectoryCsv(r, stem_path + "_traj.csv");
+      vb::io::WriteTrialJson(r, stem_path + ".json", vb::io::MakeProvenance(task, spec));
+    } catch (const vb::InputError& e) {
+      vb::io::WriteUnrunTrialJson(stem_path + ".json", t.name, key.pair, ProvenanceFor(t, key),
+                                  "error", e.what());
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "vb_batch worker: %s: %s\n", stem_path.c_str(), e.what());
+    code = 1;   // the parent records the trial as crashed
+  }
+  std::fflush(stderr);
+  std::_Exit(code);
+}
+
+std::string DescribeWaitStatus(int status) {
+  if (WIFSIGNALED(status)) {
+    const int sig = WTERMSIG(status);
+    return "worker killed by signal " + std::to_string(sig) + " (" + strsignal(sig) + ")";
+  }
+  if (WIFEXITED(status)) {
+    return "worker exited with code " + std::to_string(WEXITSTATUS(status)) +
+           " without a result (internal error, see the batch's stderr)";
+  }
+  return "worker ended abnormally";
+}
+
+}  // namespace vb_batch

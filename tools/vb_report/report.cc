@@ -1,0 +1,112 @@
+// vb_report DIR: tables, plots and top-down pictures of a batch directory (docs/reports.md).
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <sstream>
+
+#include "common.h"
+#include "io/batch_io.h"
+#include "io/task_io.h"
+#include "io/yaml_strict.h"
+#include "vb/batch/aggregate.h"
+#include "vb/engine/error.h"
+
+namespace vb_report {
+
+namespace fs = std::filesystem;
+
+int Report(const std::vector<std::string>& args) {
+  std::string dir, out, topdown;
+  for (size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= args.size()) throw vb::InputError("", 0, a, "missing value");
+      return args[++i];
+    };
+    if (a == "--out") {
+      out = value();
+    } else if (a == "--topdown") {
+      topdown = value();
+    } else if (!a.empty() && a[0] == '-') {
+      throw vb::InputError("", 0, a, "unknown option (see --help)");
+    } else if (dir.empty()) {
+      dir = a;
+    } else {
+      throw vb::InputError("", 0, a, "more than one directory given (see --help)");
+    }
+  }
+  if (dir.empty()) throw vb::InputError("", 0, "DIR", "no batch directory given (see --help)");
+  if (out.empty()) out = (fs::path(dir) / "report").string();
+  const std::vector<vb::batch::TrialRow> rows = ReadIndex(dir);
+  std::vector<std::string> wanted;   // --topdown trial stems; empty = all
+  if (!topdown.empty() && topdown != "all") {
+    std::stringstream ss(topdown);
+    std::string s;
+    while (std::getline(ss, s, ',')) {
+      if (std::none_of(rows.begin(), rows.end(),
+                       [&](const vb::batch::TrialRow& r) { return Stem(r) == s; })) {
+        throw vb::InputError(dir + "/index.csv", 0, "--topdown", "no trial '" + s + "'");
+      }
+      wanted.push_back(s);
+    }
+  }
+  std::error_code ec;
+  fs::create_directories(out, ec);
+  if (ec) throw vb::InputError(out, 0, "--out", "cannot create directory: " + ec.message());
+
+  const vb::batch::Report report = vb::batch::BuildReport(rows);
+  vb::io::WriteFileAtomic(out + "/table1.csv", vb::batch::Table1Csv(report));
+  vb::io::WriteFileAtomic(out + "/fig6.csv", vb::batch::FactorsCsv(report));
+  std::string md = vb::batch::ReportMarkdown(report);
+  const std::vector<std::string> plots = vb::io::WriteReportPlots(report, out);
+  if (!plots.empty()) {
+    md += "\n## Plots\n\n";
+    for (const std::string& p : plots) md += "![" + p + "](" + p + ")\n";
+  }
+  vb::io::WriteFileAtomic(out + "/report.md", md);
+
+  size_t pictures = 0;
+  if (!topdown.empty()) {
+    fs::create_directories(out + "/topdown", ec);
+    std::map<std::string, vb::terrain::TaskSpec> tasks;   // loaded once per task file
+    for (const vb::batch::TrialRow& r : rows) {
+      const std::string stem = Stem(r);
+      if (!wanted.empty() && std::find(wanted.begin(), wanted.end(), stem) == wanted.end()) {
+        continue;
+      }
+      if (r.task_file.empty()) continue;
+      auto it = tasks.find(r.task_file);
+      if (it == tasks.end()) {
+        try {
+          it = tasks.emplace(r.task_file, vb::io::LoadTask(r.task_file)).first;
+        } catch (const vb::InputError& e) {
+          std::fprintf(stderr, "vb_report: no picture for %s: %s\n", stem.c_str(), e.what());
+          continue;
+        }
+      }
+      char caption[256];
+      if (r.status == "success") {
+        std::snprintf(caption, sizeof(caption), "%s  %s in %.1f s", stem.c_str(),
+                      r.status.c_str(), r.traversal_time_s);
+      } else {
+        std::snprintf(caption, sizeof(caption), "%s  %s", stem.c_str(), r.status.c_str());
+      }
+      vb::io::WriteTopDownPng(it->second, r.pair,
+                              (fs::path(dir) / "trials" / (stem + "_traj.csv")).string(),
+                              caption, out + "/topdown/" + stem + ".png");
+      ++pictures;
+    }
+  }
+
+  std::map<std::string, int> counts;
+  for (const vb::batch::TrialRow& r : rows) ++counts[r.status];
+  std::string summary;
+  for (const auto& [s, n] : counts) summary += (summary.empty() ? "" : ", ") + s + " " + std::to_string(n);
+  std::printf("vb_report: %zu trials (%s), %zu systems -> %s/report.md, %zu plots%s\n",
+              rows.size(), summary.c_str(), report.systems.size(), out.c_str(), plots.size(),
+              pictures ? (", " + std::to_string(pictures) + " top-down pictures").c_str() : "");
+  return 0;
+}
+
+}  // namespace vb_report
