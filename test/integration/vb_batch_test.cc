@@ -100,7 +100,7 @@ TEST_F(VbBatchTest, FullRunRecordsEveryTrialWithItsStatus) {
   const std::string index = ReadFile(root_ / "full/index.csv");
   EXPECT_EQ(CountJson(root_ / "full/trials"), 6u);
   // env061 is deformable: recorded as error with the reason, the batch goes on.
-  EXPECT_NE(index.find("env061,0,0,hmmwv,pid,1,mid,deformable,medium,error"), std::string::npos)
+  EXPECT_NE(index.find("env061,0,0,hmmwv,pid,1,mid,deformable,dense,error"), std::string::npos)
       << index;
   EXPECT_NE(index.find(",success,"), std::string::npos);
   EXPECT_NE(index.find(",stuck,"), std::string::npos);
