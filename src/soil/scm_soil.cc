@@ -30,6 +30,9 @@ constexpr double kShearCapInK = 5.0;
 // A wheel whose bottom is this far above the undisturbed terrain cannot touch any soil (berms
 // and bow waves stay far lower).
 constexpr double kMaxDeposit_m = 0.5;
+// Erosion moves below this height (m) no longer put a node back on the work list: the slope is
+// settled to 0.01 mm.
+constexpr double kErosionSettled_m = 1e-5;
 // Smallest cosine between the wheel-surface normal and the vertical used to turn a grid cell's
 // horizontal area into the wheel-surface area above it (78 degrees: the deepest snow rut).
 constexpr double kMinCos = 0.2;
@@ -44,6 +47,7 @@ struct Node {
   bool disturbed = false;     // level0 or plastic changed once
   int32_t contact_step = -2;  // last step with wheel contact
   int32_t mark_step = -2;     // scratch stamp (rim membership in EndStep)
+  int32_t queue_stamp = -1;   // scratch stamp (erosion work list membership)
 };
 
 struct Tile {
@@ -85,7 +89,13 @@ struct ScmSoil::Impl {
     double lat, lon; // position along the axis / along the rolling direction
   };
   std::vector<Hit> hits;
-  std::vector<std::pair<int, int>> rim;
+  // Erosion work lists: nodes to check in this pass / next pass, with their ring distance from
+  // the rim they started at; `pending` carries nodes still changing at the end of a step over.
+  struct Work {
+    int i, j, ring;
+  };
+  std::vector<Work> rim, active, next, pending;
+  int32_t queue_stamp = 0;
 
   explicit Impl(const terrain::Terrain& t) : terrain(t) {}
 
@@ -125,7 +135,7 @@ struct ScmSoil::Impl {
     return n != nullptr ? Level(*n) : terrain.Height(i * dx, j * dx);
   }
 
-  void Erode(const Patch& patch, const BulldozingParams& bp);
+  void Erode(const BulldozingParams& bp);
 };
 
 ScmSoil::ScmSoil(const terrain::Terrain& terrain, const SoilConfig& config)
@@ -307,10 +317,11 @@ void ScmSoil::EndStep(double /*dt*/) {
   Impl& m = *impl_;
   const BulldozingParams& bp = config_.bulldozing;
   if (bp.enabled) {
+    m.rim.clear();
     for (const Impl::Patch& patch : m.patches) {
       // Rim: untouched deformable 4-neighbours of this patch's contact nodes, in contact order.
       double volume = 0.0;  // displaced height summed over nodes (all cells have equal area)
-      m.rim.clear();
+      const size_t rim_begin = m.rim.size();
       for (size_t k = patch.begin; k < patch.end; ++k) {
         const Impl::Contact& ct = m.contacts[k];
         volume += ct.flow_m;
@@ -322,23 +333,24 @@ void ScmSoil::EndStep(double /*dt*/) {
             continue;
           }
           nb->mark_step = m.step;
-          m.rim.emplace_back(ct.i + di[e], ct.j + dj[e]);
+          m.rim.push_back({ct.i + di[e], ct.j + dj[e], 0});
         }
       }
+      const size_t rim_count = m.rim.size() - rim_begin;
       if (volume > 0.0) {
-        if (m.rim.empty()) {
+        if (rim_count == 0) {
           m.lost_volume_m3 += volume * m.dx * m.dx;
         } else {
-          const double dh = bp.flow_factor * volume / static_cast<double>(m.rim.size());
-          for (const auto& ij : m.rim) {
-            Node* nb = m.At(ij.first, ij.second, false);
+          const double dh = bp.flow_factor * volume / static_cast<double>(rim_count);
+          for (size_t k = rim_begin; k < m.rim.size(); ++k) {
+            Node* nb = m.At(m.rim[k].i, m.rim[k].j, false);
             nb->level0_m += dh;
             nb->disturbed = true;
           }
         }
       }
-      m.Erode(patch, bp);
     }
+    m.Erode(bp);
   }
   m.contacts.clear();
   m.patches.clear();
@@ -346,35 +358,57 @@ void ScmSoil::EndStep(double /*dt*/) {
   ++m.stats.steps;
 }
 
-// Slopes steeper than the erosion angle between a disturbed node and a 4-neighbour flow
-// downhill: half the excess height over 4 neighbours per pass, exactly conserving (what leaves
-// one node arrives at the other). Domain: the patch's bounding box grown by the propagation
-// count (Chrono dilates the rim ring by 4-neighbour steps; a box is a superset, cheaper to scan).
-void ScmSoil::Impl::Erode(const Patch& patch, const BulldozingParams& bp) {
+// Slopes steeper than the erosion angle between a node and a 4-neighbour flow downhill: half the
+// excess height over 4 neighbours per pass, exactly conserving (what leaves one node arrives at
+// the other). Nodes under a wheel neither give nor take. Chrono scans the rim dilated
+// `erosion_propagations` times on every pass; here a work list starts at the rim (and at the
+// nodes still moving at the end of the last step) and follows the flow: every node that gave or
+// took soil is checked again in the next pass, up to `erosion_propagations` rings from where
+// it started. Same domain bound and settings, but only nodes that can change are visited.
+void ScmSoil::Impl::Erode(const BulldozingParams& bp) {
   const double threshold = dx * std::tan(bp.erosion_angle_rad);
-  const int grow = bp.erosion_propagations + 1;
   const int di[4] = {1, -1, 0, 0}, dj[4] = {0, 0, 1, -1};
-  for (int pass = 0; pass < bp.erosion_iterations; ++pass) {
-    for (int j = patch.j_lo - grow; j <= patch.j_hi + grow; ++j) {
-      for (int i = patch.i_lo - grow; i <= patch.i_hi + grow; ++i) {
-        Node* n = At(i, j, false);
-        ++stats.eroded_node_visits;
-        if (n == nullptr || !n->disturbed || n->slot < 0 || n->contact_step == step) continue;
-        for (int e = 0; e < 4; ++e) {
-          const int ni = i + di[e], nj = j + dj[e];
-          const double dy = Level(*n) - LevelAt(ni, nj);
-          if (std::abs(dy) <= threshold) continue;
-          Node* nb = At(ni, nj, true);
-          if (nb == nullptr || nb->slot < 0 || nb->contact_step == step) continue;
-          const double q = 0.5 * (std::abs(dy) - threshold) / 4.0;
-          const double moved = dy > 0.0 ? q : -q;  // from the higher node to the lower one
-          n->level0_m -= moved;
-          nb->level0_m += moved;
-          nb->disturbed = true;
+  active.clear();
+  auto enqueue = [&](std::vector<Work>* list, Node* n, int i, int j, int ring) {
+    if (n->queue_stamp == queue_stamp) return;
+    n->queue_stamp = queue_stamp;
+    list->push_back({i, j, ring});
+  };
+  ++queue_stamp;
+  for (const std::vector<Work>* src : {&rim, &pending}) {
+    for (const Work& w : *src) {
+      Node* n = At(w.i, w.j, false);
+      if (n != nullptr) enqueue(&active, n, w.i, w.j, w.ring);
+    }
+  }
+  pending.clear();
+  for (int pass = 0; pass < bp.erosion_iterations && !active.empty(); ++pass) {
+    ++queue_stamp;
+    next.clear();
+    for (const Work& w : active) {
+      Node* n = At(w.i, w.j, false);
+      ++stats.eroded_node_visits;
+      if (n->slot < 0 || n->contact_step == step) continue;
+      for (int e = 0; e < 4; ++e) {
+        const int ni = w.i + di[e], nj = w.j + dj[e];
+        const double dy = Level(*n) - LevelAt(ni, nj);
+        if (std::abs(dy) <= threshold) continue;
+        Node* nb = At(ni, nj, true);
+        if (nb == nullptr || nb->slot < 0 || nb->contact_step == step) continue;
+        const double q = 0.5 * (std::abs(dy) - threshold) / 4.0;
+        const double moved = dy > 0.0 ? q : -q;  // from the higher node to the lower one
+        n->level0_m -= moved;
+        nb->level0_m += moved;
+        n->disturbed = nb->disturbed = true;
+        if (q > kErosionSettled_m) {
+          enqueue(&next, n, w.i, w.j, w.ring);
+          if (w.ring < bp.erosion_propagations) enqueue(&next, nb, ni, nj, w.ring + 1);
         }
       }
     }
+    active.swap(next);
   }
+  pending.swap(active);  // still moving: continue next step
 }
 
 double ScmSoil::SurfaceHeight(double x_m, double y_m) const {
