@@ -87,6 +87,7 @@ struct ScmSoil::Impl {
     int i, j;
     Vec3 p;          // hit point on the wheel surface
     double lat, lon; // position along the axis / along the rolling direction
+    double cover;    // share of the cell under the tread (edge columns: < 1)
   };
   std::vector<Hit> hits;
   // Erosion work lists: nodes to check in this pass / next pass, with their ring distance from
@@ -213,12 +214,16 @@ WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
       if (disc <= 0.0) continue;
       const double t = (-qb - std::sqrt(disc)) / (2.0 * qa);
       const double lat = ua + t * a.z();
-      if (std::abs(lat) > half_w) continue;
+      // Share of the node's cell column covered by the tread: the edge columns count partly, so
+      // the effective width is the wheel's, not a whole number of cells.
+      const double cover = std::min(1.0, (half_w - std::abs(lat)) / m.dx + 0.5);
+      if (cover <= 0.0) continue;
       Node* n = m.At(i, j, true);
       if (n == nullptr || n->slot < 0) continue;
       const double hit_z = c.z() + t;
       if (hit_z >= Level(*n)) continue;
-      m.hits.push_back({n, i, j, Vec3(i * m.dx, j * m.dx, hit_z), lat, ux * fwd.x() + uy * fwd.y()});
+      m.hits.push_back(
+          {n, i, j, Vec3(i * m.dx, j * m.dx, hit_z), lat, ux * fwd.x() + uy * fwd.y(), cover});
     }
   }
   if (m.hits.empty()) return out;
@@ -232,7 +237,8 @@ WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
     lon_lo = std::min(lon_lo, h.lon);
     lon_hi = std::max(lon_hi, h.lon);
   }
-  const double b = std::min({lat_hi - lat_lo + m.dx, 2.0 * half_w, lon_hi - lon_lo + m.dx});
+  const double b = std::max(
+      m.dx, std::min({lat_hi - lat_lo + m.dx, 2.0 * half_w, lon_hi - lon_lo + m.dx}));
 
   // Stabilisation: effective stiffness and damping scales for this wheel and step.
   const double mass = wheel.mass_kg > 0.0 ? wheel.mass_kg : config_.default_wheel_mass_kg;
@@ -240,8 +246,8 @@ WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
   double k_total = 0.0, c_total = 0.0;
   for (const Impl::Hit& h : m.hits) {
     const SoilParams& s = m.soils[static_cast<size_t>(h.node->slot)];
-    k_total += s.elastic_stiffness_papm * cell;
-    c_total += s.damping_paspm * cell;
+    k_total += s.elastic_stiffness_papm * cell * h.cover;
+    c_total += s.damping_paspm * cell * h.cover;
   }
   const double k_scale = std::min(1.0, kStiffnessLimit * mass / (k_total * dt * dt));
   const double c_scale = 1.0 / (1.0 + c_total * dt / mass);  // implicit-Euler damper
@@ -275,7 +281,7 @@ WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
     const double vn = v.dot(nw);  // < 0: the wheel surface moves into the soil
     const double sigma_n = std::max(0.0, sigma - s.damping_paspm * c_scale * vn);
     // The horizontal cell under the node carries the wheel surface of area cell / cos.
-    const double area = cell / std::max(kMinCos, nw.z());
+    const double area = cell * h.cover / std::max(kMinCos, nw.z());
     // Shear: the shear displacement restarts when a node enters contact afresh.
     if (n.contact_step < m.step - 1) n.shear_m.setZero();
     const Vec3 vt = v - vn * nw;
