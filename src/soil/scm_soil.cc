@@ -56,6 +56,24 @@ struct Tile {
 
 double Level(const Node& n) { return n.level0_m - n.plastic_m / n.cos_slope; }
 
+// Lowest point of the wheel cylinder (centre c, unit axis a, radius r, half width hw) on the
+// vertical line through (x, y); false if the line misses the tread. `lat` is the position
+// along the axis.
+bool WheelBottomAt(const Vec3& c, const Vec3& a, double r, double hw, double x, double y,
+                   double* z, double* lat) {
+  const double ux = x - c.x(), uy = y - c.y();
+  const double ua = ux * a.x() + uy * a.y();
+  const double qa = 1.0 - a.z() * a.z();
+  const double qb = -2.0 * a.z() * ua;
+  const double qc = ux * ux + uy * uy - ua * ua - r * r;
+  const double disc = qb * qb - 4.0 * qa * qc;
+  if (disc <= 0.0 || qa < 1e-6) return false;
+  const double t = (-qb - std::sqrt(disc)) / (2.0 * qa);
+  *lat = ua + t * a.z();
+  *z = c.z() + t;
+  return std::abs(*lat) <= hw;
+}
+
 }  // namespace
 
 struct ScmSoil::Impl {
@@ -77,7 +95,8 @@ struct ScmSoil::Impl {
   };
   struct Patch {
     size_t begin, end;
-    int i_lo, i_hi, j_lo, j_hi;
+    Vec3 center, axis;   // the wheel that made it
+    double radius, half_width;
   };
   std::vector<Contact> contacts;
   std::vector<Patch> patches;
@@ -137,6 +156,9 @@ struct ScmSoil::Impl {
   }
 
   void Erode(const BulldozingParams& bp);
+  void DepositOnRim(const Patch& patch, size_t begin, double volume);
+  std::vector<double> room;
+  std::vector<bool> full_scratch;
 };
 
 ScmSoil::ScmSoil(const terrain::Terrain& terrain, const SoilConfig& config)
@@ -203,24 +225,17 @@ WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
 
   // (1) Geometry: the lowest point of the cylinder above each node, kept if below the soil.
   m.hits.clear();
-  const double qa = 1.0 - a.z() * a.z();  // > 0.99 here
   for (int j = j_lo; j <= j_hi; ++j) {
     for (int i = i_lo; i <= i_hi; ++i) {
+      double hit_z = 0.0, lat = 0.0;
+      if (!WheelBottomAt(c, a, r, half_w + 0.5 * m.dx, i * m.dx, j * m.dx, &hit_z, &lat)) continue;
       const double ux = i * m.dx - c.x(), uy = j * m.dx - c.y();
-      const double ua = ux * a.x() + uy * a.y();
-      const double qb = -2.0 * a.z() * ua;
-      const double qc = ux * ux + uy * uy - ua * ua - r * r;
-      const double disc = qb * qb - 4.0 * qa * qc;
-      if (disc <= 0.0) continue;
-      const double t = (-qb - std::sqrt(disc)) / (2.0 * qa);
-      const double lat = ua + t * a.z();
       // Share of the node's cell column covered by the tread: the edge columns count partly, so
       // the effective width is the wheel's, not a whole number of cells.
       const double cover = std::min(1.0, (half_w - std::abs(lat)) / m.dx + 0.5);
       if (cover <= 0.0) continue;
       Node* n = m.At(i, j, true);
       if (n == nullptr || n->slot < 0) continue;
-      const double hit_z = c.z() + t;
       if (hit_z >= Level(*n)) continue;
       m.hits.push_back(
           {n, i, j, Vec3(i * m.dx, j * m.dx, hit_z), lat, ux * fwd.x() + uy * fwd.y(), cover});
@@ -256,7 +271,6 @@ WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
   Vec3 force = Vec3::Zero(), torque = Vec3::Zero();
   double sinkage = 0.0;
   const size_t begin = m.contacts.size();
-  int pi_lo = m.hits.front().i, pi_hi = pi_lo, pj_lo = m.hits.front().j, pj_hi = pj_lo;
   for (const Impl::Hit& h : m.hits) {
     Node& n = *h.node;
     const SoilParams& s = m.soils[static_cast<size_t>(n.slot)];
@@ -304,12 +318,8 @@ WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
     n.contact_step = m.step;
     sinkage = std::max(sinkage, ca * (n.base_m - h.p.z()));
     m.contacts.push_back({h.i, h.j, flow});
-    pi_lo = std::min(pi_lo, h.i);
-    pi_hi = std::max(pi_hi, h.i);
-    pj_lo = std::min(pj_lo, h.j);
-    pj_hi = std::max(pj_hi, h.j);
   }
-  m.patches.push_back({begin, m.contacts.size(), pi_lo, pi_hi, pj_lo, pj_hi});
+  m.patches.push_back({begin, m.contacts.size(), c, a, r, half_w});
   m.stats.contact_nodes += static_cast<long>(m.hits.size());
 
   out.force_W = force;
@@ -317,6 +327,58 @@ WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
   out.normal_force_n = std::max(0.0, force.dot(under.normal_W));
   out.sinkage_m = sinkage;
   return out;
+}
+
+// Spreads `volume` (a height summed over cells) evenly over the rim nodes rim[begin..], but no
+// rim node is raised into the wheel above it (as Chrono caps the raise at the node's hit level):
+// water-filling, nodes under the tread take at most up to the tread, the rest share the
+// remainder. Only if every rim node is under the tread and full is the cap ignored (volume is
+// conserved first).
+void ScmSoil::Impl::DepositOnRim(const Patch& patch, size_t begin, double volume) {
+  const size_t n = rim.size() - begin;
+  if (n == 0) {
+    lost_volume_m3 += volume * dx * dx;
+    return;
+  }
+  room.assign(n, 1e300);
+  for (size_t k = 0; k < n; ++k) {
+    const Work& w = rim[begin + k];
+    double z = 0.0, lat = 0.0;
+    if (WheelBottomAt(patch.center, patch.axis, patch.radius, patch.half_width, w.i * dx,
+                      w.j * dx, &z, &lat)) {
+      room[k] = std::max(0.0, z - Level(*At(w.i, w.j, false)));
+    }
+  }
+  double remaining = volume;
+  size_t open = n;
+  std::vector<bool>& full = full_scratch;
+  full.assign(n, false);
+  while (open > 0 && remaining > 0.0) {
+    const double share = remaining / static_cast<double>(open);
+    bool capped = false;
+    for (size_t k = 0; k < n; ++k) {
+      if (full[k] || room[k] >= share) continue;
+      Node* nd = At(rim[begin + k].i, rim[begin + k].j, false);
+      nd->level0_m += room[k];
+      nd->disturbed = true;
+      remaining -= room[k];
+      full[k] = true;
+      --open;
+      capped = true;
+    }
+    if (capped) continue;
+    for (size_t k = 0; k < n; ++k) {
+      if (full[k]) continue;
+      Node* nd = At(rim[begin + k].i, rim[begin + k].j, false);
+      nd->level0_m += share;
+      nd->disturbed = true;
+    }
+    remaining = 0.0;
+  }
+  if (remaining > 0.0) {  // all rim nodes under the tread and full: raise them anyway
+    const double share = remaining / static_cast<double>(n);
+    for (size_t k = 0; k < n; ++k) At(rim[begin + k].i, rim[begin + k].j, false)->level0_m += share;
+  }
 }
 
 void ScmSoil::EndStep(double /*dt*/) {
@@ -342,19 +404,7 @@ void ScmSoil::EndStep(double /*dt*/) {
           m.rim.push_back({ct.i + di[e], ct.j + dj[e], 0});
         }
       }
-      const size_t rim_count = m.rim.size() - rim_begin;
-      if (volume > 0.0) {
-        if (rim_count == 0) {
-          m.lost_volume_m3 += volume * m.dx * m.dx;
-        } else {
-          const double dh = bp.flow_factor * volume / static_cast<double>(rim_count);
-          for (size_t k = rim_begin; k < m.rim.size(); ++k) {
-            Node* nb = m.At(m.rim[k].i, m.rim[k].j, false);
-            nb->level0_m += dh;
-            nb->disturbed = true;
-          }
-        }
-      }
+      if (volume > 0.0) m.DepositOnRim(patch, rim_begin, bp.flow_factor * volume);
     }
     m.Erode(bp);
   }
