@@ -27,9 +27,6 @@ constexpr int kTileMask = kTileSize - 1;
 constexpr double kStiffnessLimit = 1.0;
 // Shear displacement beyond which the soil is taken as fully sheared (1 - e^-5 = 99.3 %).
 constexpr double kShearCapInK = 5.0;
-// A wheel whose bottom is this far above the undisturbed terrain cannot touch any soil (berms
-// and bow waves stay far lower).
-constexpr double kMaxDeposit_m = 0.5;
 // Erosion moves below this height (m) no longer put a node back on the work list: the slope is
 // settled to 0.01 mm.
 constexpr double kErosionSettled_m = 1e-5;
@@ -87,6 +84,12 @@ struct ScmSoil::Impl {
   int32_t step = 0;
   ScmStats stats;
   double lost_volume_m3 = 0.0;
+  double max_raise_m = 0.0;   // highest level0 - base of any node so far (scan bound)
+  void Raise(Node* n, double dh) {
+    n->level0_m += dh;
+    n->disturbed = true;
+    max_raise_m = std::max(max_raise_m, n->level0_m - n->base_m);
+  }
 
   // This step's contacts, wheel by wheel (ranges into `contacts`).
   struct Contact {
@@ -208,16 +211,25 @@ WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
   out.on_soil = true;
   out.surface = under.surface;
   const double r = wheel.radius_m, half_w = 0.5 * wheel.width_m;
-  if (c.z() - r > under.height_m + kMaxDeposit_m) return out;  // airborne above the soil
-
   const Vec3 a = wheel.axis_W.normalized();
   Vec3 fwd = a.cross(Vec3::UnitZ());
   if (fwd.norm() < 0.1) return out;  // wheel lying on its side: no rolling contact model
   fwd.normalize();
+  // How deep the wheel can reach into the soil around it: the soil is nowhere higher than the
+  // terrain under the centre, plus its slope over the wheel's reach, plus the highest deposit
+  // so far. That bounds the contact length and so the nodes to scan.
+  const double nz = std::max(0.05, under.normal_W.z());
+  const double reach = r + half_w;
+  const double soil_top = under.height_m + reach * std::sqrt(1.0 - nz * nz) / nz +
+                          m.max_raise_m + 0.5 * m.dx;
+  const double lowest = c.z() - r * std::sqrt(1.0 - a.z() * a.z()) - half_w * std::abs(a.z());
+  const double depth = soil_top - lowest;
+  if (depth <= 0.0) return out;  // above the soil
+  const double half_len = depth >= r ? r : std::sqrt(depth * (2.0 * r - depth));
   const Vec3 lat_h = Vec3::UnitZ().cross(fwd);
-  const double half_lat = half_w + r * std::abs(a.z());
-  const double ex = std::abs(fwd.x()) * r + std::abs(lat_h.x()) * half_lat;
-  const double ey = std::abs(fwd.y()) * r + std::abs(lat_h.y()) * half_lat;
+  const double half_lat = half_w + 0.5 * m.dx + r * std::abs(a.z());
+  const double ex = std::abs(fwd.x()) * half_len + std::abs(lat_h.x()) * half_lat;
+  const double ey = std::abs(fwd.y()) * half_len + std::abs(lat_h.y()) * half_lat;
   const int i_lo = static_cast<int>(std::ceil((c.x() - ex) / m.dx));
   const int i_hi = static_cast<int>(std::floor((c.x() + ex) / m.dx));
   const int j_lo = static_cast<int>(std::ceil((c.y() - ey) / m.dx));
@@ -358,9 +370,7 @@ void ScmSoil::Impl::DepositOnRim(const Patch& patch, size_t begin, double volume
     bool capped = false;
     for (size_t k = 0; k < n; ++k) {
       if (full[k] || room[k] >= share) continue;
-      Node* nd = At(rim[begin + k].i, rim[begin + k].j, false);
-      nd->level0_m += room[k];
-      nd->disturbed = true;
+      Raise(At(rim[begin + k].i, rim[begin + k].j, false), room[k]);
       remaining -= room[k];
       full[k] = true;
       --open;
@@ -369,15 +379,13 @@ void ScmSoil::Impl::DepositOnRim(const Patch& patch, size_t begin, double volume
     if (capped) continue;
     for (size_t k = 0; k < n; ++k) {
       if (full[k]) continue;
-      Node* nd = At(rim[begin + k].i, rim[begin + k].j, false);
-      nd->level0_m += share;
-      nd->disturbed = true;
+      Raise(At(rim[begin + k].i, rim[begin + k].j, false), share);
     }
     remaining = 0.0;
   }
   if (remaining > 0.0) {  // all rim nodes under the tread and full: raise them anyway
     const double share = remaining / static_cast<double>(n);
-    for (size_t k = 0; k < n; ++k) At(rim[begin + k].i, rim[begin + k].j, false)->level0_m += share;
+    for (size_t k = 0; k < n; ++k) Raise(At(rim[begin + k].i, rim[begin + k].j, false), share);
   }
 }
 
@@ -453,9 +461,8 @@ void ScmSoil::Impl::Erode(const BulldozingParams& bp) {
         if (nb == nullptr || nb->slot < 0 || nb->contact_step == step) continue;
         const double q = 0.5 * (std::abs(dy) - threshold) / 4.0;
         const double moved = dy > 0.0 ? q : -q;  // from the higher node to the lower one
-        n->level0_m -= moved;
-        nb->level0_m += moved;
-        n->disturbed = nb->disturbed = true;
+        Raise(n, -moved);
+        Raise(nb, moved);
         if (q > kErosionSettled_m) {
           enqueue(&next, n, w.i, w.j, w.ring);
           if (w.ring < bp.erosion_propagations) enqueue(&next, nb, ni, nj, w.ring + 1);
