@@ -227,7 +227,7 @@ WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
   if (depth <= 0.0) return out;  // above the soil
   const double half_len = depth >= r ? r : std::sqrt(depth * (2.0 * r - depth));
   const Vec3 lat_h = Vec3::UnitZ().cross(fwd);
-  const double half_lat = half_w + 0.5 * m.dx + r * std::abs(a.z());
+  const double half_lat = half_w + r * std::abs(a.z());
   const double ex = std::abs(fwd.x()) * half_len + std::abs(lat_h.x()) * half_lat;
   const double ey = std::abs(fwd.y()) * half_len + std::abs(lat_h.y()) * half_lat;
   const int i_lo = static_cast<int>(std::ceil((c.x() - ex) / m.dx));
@@ -240,12 +240,12 @@ WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
   for (int j = j_lo; j <= j_hi; ++j) {
     for (int i = i_lo; i <= i_hi; ++i) {
       double hit_z = 0.0, lat = 0.0;
-      if (!WheelBottomAt(c, a, r, half_w + 0.5 * m.dx, i * m.dx, j * m.dx, &hit_z, &lat)) continue;
+      if (!WheelBottomAt(c, a, r, half_w, i * m.dx, j * m.dx, &hit_z, &lat)) continue;
       const double ux = i * m.dx - c.x(), uy = j * m.dx - c.y();
-      // Share of the node's cell column covered by the tread: the edge columns count partly, so
-      // the effective width is the wheel's, not a whole number of cells.
+      // Only nodes whose vertical line meets the tread are pressed. The outermost columns carry
+      // the share of their cell the tread covers (>= 1/2), so the effective width follows the
+      // wheel's between grid positions instead of jumping by whole cells.
       const double cover = std::min(1.0, (half_w - std::abs(lat)) / m.dx + 0.5);
-      if (cover <= 0.0) continue;
       Node* n = m.At(i, j, true);
       if (n == nullptr || n->slot < 0) continue;
       if (hit_z >= Level(*n)) continue;
