@@ -108,10 +108,10 @@ int main(int argc, char** argv) {
     std::printf("soil  slip   DP_N   Wong_N  sinkage_m  Bekker_rolling_m  rut_m  berm_m\n");
     for (SurfaceClass c : {SurfaceClass::kSnow, SurfaceClass::kMud, SurfaceClass::kSand}) {
       const vb::soil::SoilParams& s = *config.For(c);
-      vb::io::PlotSeries dp{std::string(Name(c)) + " (vb SCM)", {}, {}, true};
-      vb::io::PlotSeries wong{std::string(Name(c)) + " (Wong closed form)", {}, {}, false};
-      vb::io::PlotSeries sink{std::string(Name(c)) + " (vb SCM)", {}, {}, true};
-      vb::io::PlotSeries bekker{std::string(Name(c)) + " (Bekker, rolling)", {}, {}, false};
+      vb::io::PlotSeries dp{std::string(Name(c)) + " vb", {}, {}, true};
+      vb::io::PlotSeries wong{std::string(Name(c)) + " Wong", {}, {}, false};
+      vb::io::PlotSeries sink{std::string(Name(c)) + " vb", {}, {}, true};
+      vb::io::PlotSeries bekker{std::string(Name(c)) + " Bekker", {}, {}, false};
       for (double slip : slips) {
         vb::soil::WheelRigSpec spec;
         spec.soil = c;
@@ -140,6 +140,36 @@ int main(int argc, char** argv) {
     vb::io::WriteLinePlot(sink_plot, out_dir + "/soil_sinkage.png");
     std::printf("plots: %s/soil_drawbar_pull.png, %s/soil_sinkage.png\n\n", out_dir.c_str(),
                 out_dir.c_str());
+
+    // Grid convergence: static sinkage of the pressure-only model (no shear, no flow) and the
+    // full model's drawbar pull at 40 % slip, per grid spacing.
+    std::printf("grid convergence (static sinkage: pressure only, vs exact Bekker; DP at s = 0.4: "
+                "full model):\n");
+    std::printf("soil  grid_m  static_m  Bekker_m  err_%%  DP_0.4_N\n");
+    for (SurfaceClass c : {SurfaceClass::kSnow, SurfaceClass::kMud, SurfaceClass::kSand}) {
+      for (double spacing : {0.1, 0.05, 0.025}) {
+        vb::soil::SoilConfig plain = config;
+        plain.grid_spacing_m = spacing;
+        plain.bulldozing.enabled = false;
+        for (auto& s : plain.classes) {
+          s->friction_angle_rad = 0.0;
+          s->cohesion_pa = 0.0;
+        }
+        vb::soil::WheelRigSpec spec;
+        spec.soil = c;
+        spec.speed_mps = 0.0;
+        const double z = vb::soil::RunWheelRig(plain, spec).static_sinkage_m;
+        const double z_exact = vb::soil::WheelSinkageExact(*config.For(c), r, b, w);
+        vb::soil::SoilConfig full = config;
+        full.grid_spacing_m = spacing;
+        spec.speed_mps = 1.0;
+        spec.slip = 0.4;
+        const double dp = vb::soil::RunWheelRig(full, spec).drawbar_pull_n;
+        std::printf("%-5s %6.3f %9.4f %9.4f %6.1f %9.1f\n", Name(c), spacing, z, z_exact,
+                    100.0 * (z / z_exact - 1.0), dp);
+      }
+    }
+    std::printf("\n");
 
     std::printf("solver cost per step (mud, towed at 20 %% slip, median of 3):\n");
     std::printf("grid_m  wheels  us/step  us/wheel  contact_nodes/step\n");
