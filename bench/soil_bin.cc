@@ -102,7 +102,7 @@ int main(int argc, char** argv) {
     dp_plot.title = "HMMWV wheel (r 0.467 m, b 0.254 m, 6.1 kN) in the soil bin: drawbar pull";
     dp_plot.x_label = "slip";
     dp_plot.y_label = "drawbar pull (N)";
-    sink_plot.title = "HMMWV wheel in the soil bin: sinkage (towed at 1 m/s)";
+    sink_plot.title = "HMMWV wheel in the soil bin: sinkage (full model towed at 1 m/s)";
     sink_plot.x_label = "slip";
     sink_plot.y_label = "sinkage (m)";
     std::printf("soil  slip   DP_N   Wong_N  sinkage_m  Bekker_rolling_m  rut_m  berm_m\n");
@@ -112,6 +112,18 @@ int main(int argc, char** argv) {
       vb::io::PlotSeries wong{std::string(Name(c)) + " Wong", {}, {}, false};
       vb::io::PlotSeries sink{std::string(Name(c)) + " vb", {}, {}, true};
       vb::io::PlotSeries bekker{std::string(Name(c)) + " Bekker", {}, {}, false};
+      // The pressure model alone (no shear, no flow) towed slowly: what Bekker's formula describes.
+      vb::io::PlotSeries plain_sink{std::string(Name(c)) + " vb p-only", {}, {}, false};
+      vb::soil::SoilConfig plain = config;
+      plain.bulldozing.enabled = false;
+      for (auto& p : plain.classes) {
+        p->friction_angle_rad = 0.0;
+        p->cohesion_pa = 0.0;
+      }
+      vb::soil::WheelRigSpec plain_spec;
+      plain_spec.soil = c;
+      plain_spec.speed_mps = 0.1;
+      const double plain_z = vb::soil::RunWheelRig(plain, plain_spec).sinkage_m;
       for (double slip : slips) {
         vb::soil::WheelRigSpec spec;
         spec.soil = c;
@@ -130,11 +142,14 @@ int main(int argc, char** argv) {
         sink.y.push_back(res.sinkage_m);
         bekker.x.push_back(slip);
         bekker.y.push_back(z_b);
+        plain_sink.x.push_back(slip);
+        plain_sink.y.push_back(plain_z);
       }
       dp_plot.series.push_back(dp);
       dp_plot.series.push_back(wong);
       sink_plot.series.push_back(sink);
       sink_plot.series.push_back(bekker);
+      sink_plot.series.push_back(plain_sink);
     }
     vb::io::WriteLinePlot(dp_plot, out_dir + "/soil_drawbar_pull.png");
     vb::io::WriteLinePlot(sink_plot, out_dir + "/soil_sinkage.png");
