@@ -41,7 +41,6 @@ struct Node {
   Vec3 shear_m = Vec3::Zero();// Janosi shear displacement (world vector, in the contact plane)
   float cos_slope = 1.0f;     // z of the undeformed terrain normal
   int8_t slot = -1;           // soil slot (SoilSlot), -1: rigid or outside the world
-  bool disturbed = false;     // level0 or plastic changed once
   int32_t contact_step = -2;  // last step with wheel contact
   int32_t mark_step = -2;     // scratch stamp (rim membership in EndStep)
   int32_t queue_stamp = -1;   // scratch stamp (erosion work list membership)
@@ -83,11 +82,9 @@ struct ScmSoil::Impl {
   std::array<SoilParams, 3> soils;
   int32_t step = 0;
   ScmStats stats;
-  double lost_volume_m3 = 0.0;
   double max_raise_m = 0.0;   // highest level0 - base of any node so far (scan bound)
   void Raise(Node* n, double dh) {
     n->level0_m += dh;
-    n->disturbed = true;
     max_raise_m = std::max(max_raise_m, n->level0_m - n->base_m);
   }
 
@@ -297,7 +294,6 @@ WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
       const double plastic = z - p_bekker / ke;
       flow = (plastic - n.plastic_m) / ca;
       n.plastic_m = plastic;
-      n.disturbed = true;
     }
     // Wheel surface normal at the hit point (towards the axis) and the point's velocity.
     const Vec3 w = h.p - c;
@@ -349,7 +345,7 @@ WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
 void ScmSoil::Impl::DepositOnRim(const Patch& patch, size_t begin, double volume) {
   const size_t n = rim.size() - begin;
   if (n == 0) {
-    lost_volume_m3 += volume * dx * dx;
+    stats.lost_volume_m3 += volume * dx * dx;
     return;
   }
   room.assign(n, 1e300);

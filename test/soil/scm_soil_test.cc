@@ -138,6 +138,7 @@ TEST(ScmSoilTest, BulldozingConservesVolumeAndRaisesARim) {
   }
   EXPECT_GT(soil.CompactedVolume_m3(), 0.02);
   EXPECT_NEAR(soil.VolumeChange_m3(), 0.0, 1e-12 * soil.CompactedVolume_m3() + 1e-15);
+  EXPECT_EQ(soil.stats().lost_volume_m3, 0.0);
   EXPECT_LT(soil.SurfaceHeight(0.0, 0.0), -0.05);                  // rut
   EXPECT_GT(std::max(soil.SurfaceHeight(0.0, 0.2), soil.SurfaceHeight(0.0, 0.25)), 0.02);  // berm
 }

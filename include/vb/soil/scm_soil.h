@@ -26,6 +26,8 @@ struct ScmStats {
   long contact_nodes = 0;      // node-contacts summed over all wheel queries
   long eroded_node_visits = 0; // node visits of the erosion passes
   long tiles = 0;              // allocated tiles
+  double lost_volume_m3 = 0.0; // displaced soil with no deformable rim to go to (rigid patch,
+                               // world edge): the only way bulldozing loses volume
   size_t memory_bytes = 0;     // tiles + tile index
 };
 
