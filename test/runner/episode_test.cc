@@ -4,6 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
+#include "io/soil_io.h"
 #include "io/vehicle_io.h"
 #include "vb/engine/error.h"
 
@@ -127,18 +130,46 @@ TEST(EpisodeTest, SetUpErrorsAreInputErrors) {
   }
 }
 
-TEST(EpisodeTest, DeformableTerrainIsRefusedHonestly) {
+TEST(EpisodeTest, DeformableTerrainWithoutSoilParametersIsRefused) {
   terrain::TaskSpec task = FlatTask();
   task.patches.classes[17] = terrain::SurfaceClass::kMud;
   task.patches.friction[17] = 0.0;
   try {
     RunTrial(task, Hmmwv(), TrialSpec());
-    FAIL() << "deformable task accepted";
+    FAIL() << "deformable task accepted without soil parameters";
   } catch (const InputError& e) {
     EXPECT_EQ(e.file(), "synthetic_flat.yaml");
     EXPECT_EQ(e.key(), "semantics.classes");
-    EXPECT_NE(std::string(e.what()).find("soil solver"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("soil parameters"), std::string::npos) << e.what();
   }
+}
+
+// A mixed world (a mud band across the path of a flat dirt world) runs with the soil solver:
+// the wheels report sinkage on the mud and none on the dirt, and the HMMWV still gets through.
+TEST(EpisodeTest, MixedWorldRunsWithTheSoilSolver) {
+  terrain::TaskSpec task = FlatTask();
+  for (int r = 0; r < 16; ++r) {
+    for (int c = 6; c <= 8; ++c) {  // x in [-16, 8] m
+      task.patches.classes[static_cast<size_t>(r * 16 + c)] = terrain::SurfaceClass::kMud;
+      task.patches.friction[static_cast<size_t>(r * 16 + c)] = 0.0;
+    }
+  }
+  const soil::SoilConfig soil = io::LoadSoil(std::string(VB_SOURCE_DIR) + "/data/soils/verti_bench.yaml");
+  const TrialResult r = RunTrial(task, Hmmwv(), TrialSpec(), EpisodeRules(), &soil);
+  EXPECT_EQ(r.status, TrialStatus::kSuccess) << r.message;
+  double max_sinkage_mud = 0.0, max_sinkage_dirt = 0.0;
+  for (const TrajectorySample& s : r.trajectory) {
+    for (size_t w = 0; w < s.wheel_surface.size(); ++w) {
+      if (s.wheel_surface[w] == static_cast<int>(terrain::SurfaceClass::kMud)) {
+        max_sinkage_mud = std::max(max_sinkage_mud, s.wheel_sinkage_m[w]);
+      } else {
+        max_sinkage_dirt = std::max(max_sinkage_dirt, s.wheel_sinkage_m[w]);
+      }
+    }
+  }
+  EXPECT_GT(max_sinkage_mud, 0.03);
+  EXPECT_LT(max_sinkage_mud, 0.25);
+  EXPECT_EQ(max_sinkage_dirt, 0.0);
 }
 
 TEST(EpisodeTest, StatusNames) {

@@ -6,10 +6,12 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "io/result_io.h"
+#include "io/soil_io.h"
 #include "io/task_io.h"
 #include "io/vehicle_io.h"
 #include "vb/controllers/controller.h"
@@ -26,6 +28,8 @@ options:
   --vehicle NAME     vehicle description $VB_DATA_DIR/vehicles/NAME.yaml (required);
                      VB_DATA_DIR defaults to the source tree's data/ directory
   --system NAME      mobility system (default: pid)
+  --soil NAME        soil parameters $VB_DATA_DIR/soils/NAME.yaml for tasks with mud, sand or
+                     snow patches (default: verti_bench, the original's three soils)
   --pair K|all       start/goal pair index, or all pairs (default: all)
   --seed S           trial seed, an unsigned 64-bit integer (default: 0)
   --out DIR          output directory (default: results/<task name>/)
@@ -50,6 +54,7 @@ struct Options {
   std::string task_path;
   std::string vehicle;
   std::string system = "pid";
+  std::string soil = "verti_bench";
   std::string pair = "all";
   uint64_t seed = 0;
   std::string out_dir;
@@ -93,6 +98,8 @@ Options ParseArgs(int argc, char** argv) {
       o.vehicle = value();
     } else if (a == "--system") {
       o.system = value();
+    } else if (a == "--soil") {
+      o.soil = value();
     } else if (a == "--pair") {
       o.pair = value();
     } else if (a == "--seed") {
@@ -139,6 +146,15 @@ int Run(const Options& o) {
   const vb::vehicles::VehicleParams params =
       vb::io::LoadVehicle(data_dir + "/vehicles/" + o.vehicle + ".yaml");
 
+  // Soil parameters only when the task needs them (a rigid task never reads the soil file).
+  std::optional<vb::soil::SoilConfig> soil;
+  for (vb::terrain::SurfaceClass c : task.patches.classes) {
+    if (vb::terrain::IsDeformable(c)) {
+      soil = vb::io::LoadSoil(data_dir + "/soils/" + o.soil + ".yaml");
+      break;
+    }
+  }
+
   std::vector<int> pairs;
   if (o.pair == "all") {
     for (size_t k = 0; k < task.pairs.size(); ++k) pairs.push_back(static_cast<int>(k));
@@ -162,7 +178,7 @@ int Run(const Options& o) {
     spec.seed = o.seed;
     spec.system = o.system;
     spec.vehicle = o.vehicle;
-    vb::runner::TrialResult r = vb::runner::RunTrial(task, params, spec, rules);
+    vb::runner::TrialResult r = vb::runner::RunTrial(task, params, spec, rules, soil ? &*soil : nullptr);
     const std::string stem = out_dir + "/" + vb::io::TrialFileStem(r);
     vb::io::WriteTrialJson(r, stem + ".json", vb::io::MakeProvenance(task, spec));
     vb::io::WriteTrajectoryCsv(r, stem + "_traj.csv");

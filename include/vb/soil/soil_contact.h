@@ -21,6 +21,11 @@ struct WheelSoilInput {
   Vec3 angular_velocity_W = Vec3::Zero();
   double radius_m = 0.0;
   double width_m = 0.0;
+  // Mass and spin inertia the contact acts on (wheel + carrier; wheel about its axle), for the
+  // implicit form of the stiff soil spring and of the shear force. 0: the solver's configured
+  // defaults (SoilConfig::default_wheel_*), which describe the HMMWV wheel.
+  double mass_kg = 0.0;
+  double spin_inertia_kgm2 = 0.0;
 };
 
 // The soil's answer. on_soil == false: the wheel is not over deformable ground; the vehicle uses

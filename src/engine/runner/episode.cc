@@ -14,6 +14,7 @@
 
 #include "vb/engine/error.h"
 #include "vb/engine/physics_world.h"
+#include "vb/soil/scm_soil.h"
 #include "vb/terrain/grid_planner.h"
 #include "vb/terrain/terrain.h"
 #include "vb/terrain/terrain_physics.h"
@@ -129,8 +130,13 @@ TrajectorySample MakeSample(double t, const vehicles::VehicleState& s,
   return out;
 }
 
+bool HasDeformablePatches(const terrain::TaskSpec& task) {
+  return std::any_of(task.patches.classes.begin(), task.patches.classes.end(),
+                     [](terrain::SurfaceClass c) { return terrain::IsDeformable(c); });
+}
+
 void ValidateSetup(const terrain::TaskSpec& task, const TrialSpec& spec,
-                   const EpisodeRules& rules) {
+                   const EpisodeRules& rules, const soil::SoilConfig* soil) {
   const int num_pairs = static_cast<int>(task.pairs.size());
   if (spec.pair_index < 0 || spec.pair_index >= num_pairs) {
     throw InputError(task.source_file, 0, "pair",
@@ -138,12 +144,10 @@ void ValidateSetup(const terrain::TaskSpec& task, const TrialSpec& spec,
                          task.name + "' has " + std::to_string(num_pairs) + " pairs (0.." +
                          std::to_string(num_pairs - 1) + ")");
   }
-  for (terrain::SurfaceClass c : task.patches.classes) {
-    if (terrain::IsDeformable(c)) {
-      throw InputError(task.source_file, 0, "semantics.classes",
-                       "deformable terrain (mud/sand/snow) needs the soil solver, not available "
-                       "yet");
-    }
+  if (HasDeformablePatches(task) && soil == nullptr) {
+    throw InputError(task.source_file, 0, "semantics.classes",
+                     "the task has deformable patches (mud/sand/snow) but no soil parameters "
+                     "were given (data/soils/*.yaml, vb_run --soil)");
   }
   if (!(rules.step_s > 0.0)) throw InputError("", 0, "step_s", "must be > 0");
   if (!(rules.time_limit_s > 0.0)) throw InputError("", 0, "time_limit_s", "must be > 0");
@@ -176,8 +180,9 @@ std::string_view TrialStatusName(TrialStatus s) {
 }
 
 TrialResult RunTrial(const terrain::TaskSpec& task, const vehicles::VehicleParams& vehicle_params,
-                     const TrialSpec& spec, const EpisodeRules& rules) {
-  ValidateSetup(task, spec, rules);
+                     const TrialSpec& spec, const EpisodeRules& rules,
+                     const soil::SoilConfig* soil_config) {
+  ValidateSetup(task, spec, rules, soil_config);
   std::unique_ptr<controllers::Controller> controller = MakeSystem(spec.system);
   const auto wall_start = std::chrono::steady_clock::now();
 
@@ -216,6 +221,13 @@ TrialResult RunTrial(const terrain::TaskSpec& task, const vehicles::VehicleParam
                rules.start_height_m);
   start_pose.rotation = FromYaw(yaw0);
   vehicles::Vehicle vehicle(vehicle_params, ground, start_pose, &world);
+  // Deformable patches: one SCM grid over the whole world (it only stores what wheels touch);
+  // wheels over rigid patches keep the vehicle's rigid tire, rocks stay rigid bodies.
+  std::unique_ptr<soil::ScmSoil> soil;
+  if (HasDeformablePatches(task)) {
+    soil = std::make_unique<soil::ScmSoil>(ground, *soil_config);
+    vehicle.SetSoil(soil.get());
+  }
 
   controllers::EpisodeContext context;
   context.task = &task;
@@ -275,6 +287,7 @@ TrialResult RunTrial(const terrain::TaskSpec& task, const vehicles::VehicleParam
       // One physics step.
       vehicle.SetInputs(inputs);
       vehicle.Synchronize(dt);
+      if (soil) soil->EndStep(dt);
       world.Step(dt);
       vehicle.UpdateState();
       ++k;

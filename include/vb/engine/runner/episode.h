@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "vb/controllers/controller.h"
+#include "vb/soil/soil_params.h"
 #include "vb/terrain/task.h"
 #include "vb/vehicles/vehicle_params.h"
 
@@ -77,8 +78,11 @@ struct TrialResult {
 };
 
 // Runs one trial. Never throws for numerical trouble (that is kSimError); throws InputError only
-// for a trial that cannot be set up (pair index out of range, unknown system, unsupported terrain).
+// for a trial that cannot be set up (pair index out of range, unknown system, a task with
+// deformable patches but no soil parameters). `soil` (loaded by io::LoadSoil) is needed only
+// when the task has mud, sand or snow patches.
 TrialResult RunTrial(const terrain::TaskSpec& task, const vehicles::VehicleParams& vehicle,
-                     const TrialSpec& spec, const EpisodeRules& rules = EpisodeRules());
+                     const TrialSpec& spec, const EpisodeRules& rules = EpisodeRules(),
+                     const soil::SoilConfig* soil = nullptr);
 
 }  // namespace vb::runner

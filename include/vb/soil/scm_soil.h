@@ -1,0 +1,61 @@
+// vb's Soil Contact Model: a sparse height grid over the deformable patches of a task, with the
+// Bekker-Wong pressure-sinkage law, Mohr-Coulomb / Janosi-Hanamoto shear and bulldozing of the
+// displaced soil to the rut rim (docs/soil.md). Wheels are rigid cylinders intersected
+// analytically with the grid (no ray casting).
+//
+// Grid: node (i, j) at x = i * spacing, y = j * spacing (world frame). Nodes live in 16 x 16
+// tiles allocated the first time a wheel or the material flow touches them and indexed by a
+// dense table of tile slots over the world, so memory is proportional to the touched area and
+// the visiting order is always the same (deterministic). Untouched ground is the task's terrain.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "vb/soil/soil_contact.h"
+#include "vb/soil/soil_params.h"
+#include "vb/terrain/terrain.h"
+
+namespace vb::soil {
+
+// Counters for benchmarks and tests.
+struct ScmStats {
+  long steps = 0;
+  long wheel_queries = 0;
+  long contact_nodes = 0;      // node-contacts summed over all wheel queries
+  long eroded_node_visits = 0; // node visits of the erosion passes
+  long tiles = 0;              // allocated tiles
+  double lost_volume_m3 = 0.0; // displaced soil with no deformable rim to go to (rigid patch,
+                               // world edge): the only way bulldozing loses volume
+  size_t memory_bytes = 0;     // tiles + tile index
+};
+
+class ScmSoil : public SoilContact {
+ public:
+  // Throws InputError if the terrain has a deformable class the config does not describe, or the
+  // config is unusable (spacing <= 0). The terrain must outlive the solver.
+  ScmSoil(const terrain::Terrain& terrain, const SoilConfig& config);
+  ~ScmSoil() override;
+
+  WheelSoilOutput WheelContact(const WheelSoilInput& wheel, double dt) override;
+  void EndStep(double dt) override;
+
+  // Current soil surface (unloaded) at grid node nearest to (x, y).
+  double SurfaceHeight(double x_m, double y_m) const;
+  // Sum over touched nodes of (current level - initial terrain level) * cell area (m^3). Material
+  // flow with flow factor 1 conserves it; plastic compaction without flow lowers it.
+  double VolumeChange_m3() const;
+  // Sum over touched nodes of plastic sinkage * cell area (m^3): the compaction so far.
+  double CompactedVolume_m3() const;
+  const ScmStats& stats() const;
+  const SoilConfig& config() const { return config_; }
+  double spacing_m() const { return config_.grid_spacing_m; }
+
+ private:
+  struct Impl;
+  SoilConfig config_;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace vb::soil

@@ -1,0 +1,505 @@
+// The SCM solver (docs/soil.md). Per step and wheel: (1) intersect the wheel cylinder with the
+// grid nodes around it (vertical lines through the nodes, lower root of the cylinder equation);
+// (2) per contact node the elastic trial stress capped by the Bekker pressure, viscous damping,
+// and the Mohr-Coulomb / Janosi-Hanamoto shear; (3) sum forces and moments. EndStep moves the
+// soil displaced plastically this step to the rim of each wheel's contact patch and smooths
+// slopes steeper than the erosion angle.
+#include "vb/soil/scm_soil.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "vb/engine/error.h"
+
+namespace vb::soil {
+
+namespace {
+
+constexpr int kTileBits = 4;
+constexpr int kTileSize = 1 << kTileBits;   // 16 x 16 nodes per tile
+constexpr int kTileMask = kTileSize - 1;
+// Stability of the stiff elastic soil spring at the step: the wheel's total contact stiffness
+// K is limited so that K dt^2 / m <= kStiffnessLimit (semi-implicit Euler is stable below 4;
+// 1 leaves room for the suspension and for load transfer). At the HMMWV wheel and 5 ms this
+// caps Ke near 6.7e7 Pa/m over 0.06 m^2: the elastic part of the sinkage becomes ~1 mm instead
+// of ~0.4 mm, the plastic (Bekker) part is unchanged.
+constexpr double kStiffnessLimit = 1.0;
+// Shear displacement beyond which the soil is taken as fully sheared (1 - e^-5 = 99.3 %).
+constexpr double kShearCapInK = 5.0;
+// Erosion moves below this height (m) no longer put a node back on the work list: the slope is
+// settled to 0.01 mm.
+constexpr double kErosionSettled_m = 1e-5;
+// Smallest cosine between the wheel-surface normal and the vertical used to turn a grid cell's
+// horizontal area into the wheel-surface area above it (78 degrees: the deepest snow rut).
+constexpr double kMinCos = 0.2;
+
+struct Node {
+  double base_m = 0.0;        // initial terrain level
+  double level0_m = 0.0;      // undisturbed level: base plus deposits minus erosion
+  double plastic_m = 0.0;     // plastic sinkage along the terrain normal
+  Vec3 shear_m = Vec3::Zero();// Janosi shear displacement (world vector, in the contact plane)
+  float cos_slope = 1.0f;     // z of the undeformed terrain normal
+  int8_t slot = -1;           // soil slot (SoilSlot), -1: rigid or outside the world
+  int32_t contact_step = -2;  // last step with wheel contact
+  int32_t mark_step = -2;     // scratch stamp (rim membership in EndStep)
+  int32_t queue_stamp = -1;   // scratch stamp (erosion work list membership)
+};
+
+struct Tile {
+  Node nodes[kTileSize * kTileSize];
+};
+
+double Level(const Node& n) { return n.level0_m - n.plastic_m / n.cos_slope; }
+
+// Lowest point of the wheel cylinder (centre c, unit axis a, radius r, half width hw) on the
+// vertical line through (x, y); false if the line misses the tread. `lat` is the position
+// along the axis.
+bool WheelBottomAt(const Vec3& c, const Vec3& a, double r, double hw, double x, double y,
+                   double* z, double* lat) {
+  const double ux = x - c.x(), uy = y - c.y();
+  const double ua = ux * a.x() + uy * a.y();
+  const double qa = 1.0 - a.z() * a.z();
+  const double qb = -2.0 * a.z() * ua;
+  const double qc = ux * ux + uy * uy - ua * ua - r * r;
+  const double disc = qb * qb - 4.0 * qa * qc;
+  if (disc <= 0.0 || qa < 1e-6) return false;
+  const double t = (-qb - std::sqrt(disc)) / (2.0 * qa);
+  *lat = ua + t * a.z();
+  *z = c.z() + t;
+  return std::abs(*lat) <= hw;
+}
+
+}  // namespace
+
+struct ScmSoil::Impl {
+  const terrain::Terrain& terrain;
+  double dx = 0.0;
+  int i_min = 0, j_min = 0, i_max = 0, j_max = 0;
+  int tiles_x = 0, tiles_y = 0;
+  std::vector<int32_t> tile_index;           // tiles_x * tiles_y, -1: not allocated
+  std::vector<std::unique_ptr<Tile>> tiles;  // in allocation order
+  std::array<SoilParams, 3> soils;
+  int32_t step = 0;
+  ScmStats stats;
+  double max_raise_m = 0.0;   // highest level0 - base of any node so far (scan bound)
+  void Raise(Node* n, double dh) {
+    n->level0_m += dh;
+    max_raise_m = std::max(max_raise_m, n->level0_m - n->base_m);
+  }
+
+  // This step's contacts, wheel by wheel (ranges into `contacts`).
+  struct Contact {
+    int i, j;
+    double flow_m;   // plastic sinkage increment (vertical) this step
+  };
+  struct Patch {
+    size_t begin, end;
+    Vec3 center, axis;   // the wheel that made it
+    double radius, half_width;
+  };
+  std::vector<Contact> contacts;
+  std::vector<Patch> patches;
+  // Scratch of one wheel query.
+  struct Hit {
+    Node* node;
+    int i, j;
+    Vec3 p;          // hit point on the wheel surface
+    double lat, lon; // position along the axis / along the rolling direction
+    double cover;    // share of the cell under the tread (edge columns: < 1)
+  };
+  std::vector<Hit> hits;
+  // Erosion work lists: nodes to check in this pass / next pass, with their ring distance from
+  // the rim they started at; `pending` carries nodes still changing at the end of a step over.
+  struct Work {
+    int i, j, ring;
+  };
+  std::vector<Work> rim, active, next, pending;
+  int32_t queue_stamp = 0;
+
+  explicit Impl(const terrain::Terrain& t) : terrain(t) {}
+
+  Node* At(int i, int j, bool allocate) {
+    if (i < i_min || i > i_max || j < j_min || j > j_max) return nullptr;
+    const int li = i - i_min, lj = j - j_min;
+    const size_t t = static_cast<size_t>(lj >> kTileBits) * tiles_x + (li >> kTileBits);
+    int32_t idx = tile_index[t];
+    if (idx < 0) {
+      if (!allocate) return nullptr;
+      idx = Allocate(li >> kTileBits, lj >> kTileBits);
+      tile_index[t] = idx;
+    }
+    return &tiles[static_cast<size_t>(idx)]->nodes[(lj & kTileMask) * kTileSize + (li & kTileMask)];
+  }
+
+  int32_t Allocate(int tx, int ty) {
+    auto tile = std::make_unique<Tile>();
+    for (int b = 0; b < kTileSize; ++b) {
+      for (int a = 0; a < kTileSize; ++a) {
+        Node& n = tile->nodes[b * kTileSize + a];
+        const int i = i_min + tx * kTileSize + a, j = j_min + ty * kTileSize + b;
+        if (i > i_max || j > j_max) continue;  // beyond the world edge: stays rigid
+        const terrain::SurfacePoint sp = terrain.Query(i * dx, j * dx);
+        n.base_m = n.level0_m = sp.height_m;
+        n.cos_slope = static_cast<float>(std::max(0.05, sp.normal_W.z()));
+        n.slot = static_cast<int8_t>(SoilSlot(sp.surface));
+      }
+    }
+    tiles.push_back(std::move(tile));
+    ++stats.tiles;
+    return static_cast<int32_t>(tiles.size() - 1);
+  }
+
+  double LevelAt(int i, int j) {
+    const Node* n = At(i, j, false);
+    return n != nullptr ? Level(*n) : terrain.Height(i * dx, j * dx);
+  }
+
+  void Erode(const BulldozingParams& bp);
+  void DepositOnRim(const Patch& patch, size_t begin, double volume);
+  std::vector<double> room;
+  std::vector<bool> full_scratch;
+};
+
+ScmSoil::ScmSoil(const terrain::Terrain& terrain, const SoilConfig& config)
+    : config_(config), impl_(std::make_unique<Impl>(terrain)) {
+  if (!(config_.grid_spacing_m > 0.0)) {
+    throw InputError(config_.source, 0, "grid.spacing_m", "must be > 0");
+  }
+  if (!(config_.default_wheel_mass_kg > 0.0) || !(config_.default_wheel_spin_inertia_kgm2 > 0.0)) {
+    throw InputError(config_.source, 0, "stabilisation", "default wheel mass and inertia must be > 0");
+  }
+  for (terrain::SurfaceClass c : terrain.patches().classes) {
+    if (terrain::IsDeformable(c) && config_.For(c) == nullptr) {
+      throw InputError(config_.source, 0, std::string(terrain::SurfaceClassName(c)),
+                       "the task has " + std::string(terrain::SurfaceClassName(c)) +
+                           " patches but the soil file does not describe that class");
+    }
+  }
+  Impl& m = *impl_;
+  for (size_t k = 0; k < 3; ++k) {
+    if (config_.classes[k]) {
+      m.soils[k] = *config_.classes[k];
+      // As Chrono: the elastic stiffness is never below the frictional modulus.
+      m.soils[k].elastic_stiffness_papm =
+          std::max(m.soils[k].elastic_stiffness_papm, m.soils[k].bekker_kphi);
+    }
+  }
+  m.dx = config_.grid_spacing_m;
+  const double hx = terrain.size_x_m() / 2.0, hy = terrain.size_y_m() / 2.0;
+  m.i_min = static_cast<int>(std::ceil(-hx / m.dx - 1e-9));
+  m.i_max = static_cast<int>(std::floor(hx / m.dx + 1e-9));
+  m.j_min = static_cast<int>(std::ceil(-hy / m.dx - 1e-9));
+  m.j_max = static_cast<int>(std::floor(hy / m.dx + 1e-9));
+  m.tiles_x = (m.i_max - m.i_min) / kTileSize + 1;
+  m.tiles_y = (m.j_max - m.j_min) / kTileSize + 1;
+  m.tile_index.assign(static_cast<size_t>(m.tiles_x) * m.tiles_y, -1);
+}
+
+ScmSoil::~ScmSoil() = default;
+
+WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
+  Impl& m = *impl_;
+  ++m.stats.wheel_queries;
+  WheelSoilOutput out;
+  const Vec3& c = wheel.center_W;
+  const terrain::SurfacePoint under = m.terrain.Query(c.x(), c.y());
+  if (!terrain::IsDeformable(under.surface)) return out;  // rigid ground: the vehicle's tire
+  out.on_soil = true;
+  out.surface = under.surface;
+  const double r = wheel.radius_m, half_w = 0.5 * wheel.width_m;
+  const Vec3 a = wheel.axis_W.normalized();
+  Vec3 fwd = a.cross(Vec3::UnitZ());
+  if (fwd.norm() < 0.1) return out;  // wheel lying on its side: no rolling contact model
+  fwd.normalize();
+  // How deep the wheel can reach into the soil around it: the soil is nowhere higher than the
+  // terrain under the centre, plus its slope over the wheel's reach, plus the highest deposit
+  // so far. That bounds the contact length and so the nodes to scan.
+  const double nz = std::max(0.05, under.normal_W.z());
+  const double reach = r + half_w;
+  const double soil_top = under.height_m + reach * std::sqrt(1.0 - nz * nz) / nz +
+                          m.max_raise_m + 0.5 * m.dx;
+  const double lowest = c.z() - r * std::sqrt(1.0 - a.z() * a.z()) - half_w * std::abs(a.z());
+  const double depth = soil_top - lowest;
+  if (depth <= 0.0) return out;  // above the soil
+  const double half_len = depth >= r ? r : std::sqrt(depth * (2.0 * r - depth));
+  const Vec3 lat_h = Vec3::UnitZ().cross(fwd);
+  const double half_lat = half_w + r * std::abs(a.z());
+  const double ex = std::abs(fwd.x()) * half_len + std::abs(lat_h.x()) * half_lat;
+  const double ey = std::abs(fwd.y()) * half_len + std::abs(lat_h.y()) * half_lat;
+  const int i_lo = static_cast<int>(std::ceil((c.x() - ex) / m.dx));
+  const int i_hi = static_cast<int>(std::floor((c.x() + ex) / m.dx));
+  const int j_lo = static_cast<int>(std::ceil((c.y() - ey) / m.dx));
+  const int j_hi = static_cast<int>(std::floor((c.y() + ey) / m.dx));
+
+  // (1) Geometry: the lowest point of the cylinder above each node, kept if below the soil.
+  m.hits.clear();
+  for (int j = j_lo; j <= j_hi; ++j) {
+    for (int i = i_lo; i <= i_hi; ++i) {
+      double hit_z = 0.0, lat = 0.0;
+      if (!WheelBottomAt(c, a, r, half_w, i * m.dx, j * m.dx, &hit_z, &lat)) continue;
+      const double ux = i * m.dx - c.x(), uy = j * m.dx - c.y();
+      // Only nodes whose vertical line meets the tread are pressed. The outermost columns carry
+      // the share of their cell the tread covers (>= 1/2), so the effective width follows the
+      // wheel's between grid positions instead of jumping by whole cells.
+      const double cover = std::min(1.0, (half_w - std::abs(lat)) / m.dx + 0.5);
+      Node* n = m.At(i, j, true);
+      if (n == nullptr || n->slot < 0) continue;
+      if (hit_z >= Level(*n)) continue;
+      m.hits.push_back(
+          {n, i, j, Vec3(i * m.dx, j * m.dx, hit_z), lat, ux * fwd.x() + uy * fwd.y(), cover});
+    }
+  }
+  if (m.hits.empty()) return out;
+
+  // Patch width for the Bekker law: the smaller side of the contact rectangle (Bekker's b),
+  // never wider than the wheel. (Chrono uses 2A/L of the patch's convex hull, about half that.)
+  double lat_lo = 1e300, lat_hi = -1e300, lon_lo = 1e300, lon_hi = -1e300;
+  for (const Impl::Hit& h : m.hits) {
+    lat_lo = std::min(lat_lo, h.lat);
+    lat_hi = std::max(lat_hi, h.lat);
+    lon_lo = std::min(lon_lo, h.lon);
+    lon_hi = std::max(lon_hi, h.lon);
+  }
+  const double b = std::max(
+      m.dx, std::min({lat_hi - lat_lo + m.dx, 2.0 * half_w, lon_hi - lon_lo + m.dx}));
+
+  // Stabilisation: effective stiffness and damping scales for this wheel and step.
+  const double mass = wheel.mass_kg > 0.0 ? wheel.mass_kg : config_.default_wheel_mass_kg;
+  const double cell = m.dx * m.dx;
+  double k_total = 0.0, c_total = 0.0;
+  for (const Impl::Hit& h : m.hits) {
+    const SoilParams& s = m.soils[static_cast<size_t>(h.node->slot)];
+    k_total += s.elastic_stiffness_papm * cell * h.cover;
+    c_total += s.damping_paspm * cell * h.cover;
+  }
+  const double k_scale = std::min(1.0, kStiffnessLimit * mass / (k_total * dt * dt));
+  const double c_scale = 1.0 / (1.0 + c_total * dt / mass);  // implicit-Euler damper
+
+  // (2) + (3) Node stresses, forces, moments.
+  Vec3 force = Vec3::Zero(), torque = Vec3::Zero();
+  double sinkage = 0.0;
+  const size_t begin = m.contacts.size();
+  for (const Impl::Hit& h : m.hits) {
+    Node& n = *h.node;
+    const SoilParams& s = m.soils[static_cast<size_t>(n.slot)];
+    const double ca = n.cos_slope;
+    const double z = ca * (n.level0_m - h.p.z());  // sinkage along the terrain normal
+    const double ke = s.elastic_stiffness_papm * k_scale;
+    double sigma = ke * (z - n.plastic_m);  // elastic trial
+    const double p_bekker = (s.bekker_kc / b + s.bekker_kphi) * std::pow(z, s.bekker_n);
+    double flow = 0.0;
+    if (sigma > p_bekker) {  // yield: plastic sinkage follows
+      sigma = p_bekker;
+      const double plastic = z - p_bekker / ke;
+      flow = (plastic - n.plastic_m) / ca;
+      n.plastic_m = plastic;
+    }
+    // Wheel surface normal at the hit point (towards the axis) and the point's velocity.
+    const Vec3 w = h.p - c;
+    Vec3 nw = -(w - w.dot(a) * a);
+    nw /= nw.norm();
+    const Vec3 v = wheel.velocity_W + wheel.angular_velocity_W.cross(w);
+    const double vn = v.dot(nw);  // < 0: the wheel surface moves into the soil
+    const double sigma_n = std::max(0.0, sigma - s.damping_paspm * c_scale * vn);
+    // The horizontal cell under the node carries the wheel surface of area cell / cos.
+    const double area = cell * h.cover / std::max(kMinCos, nw.z());
+    // Shear: the shear displacement restarts when a node enters contact afresh.
+    if (n.contact_step < m.step - 1) n.shear_m.setZero();
+    const Vec3 vt = v - vn * nw;
+    n.shear_m += vt * dt;
+    n.shear_m -= n.shear_m.dot(nw) * nw;
+    const double jmax = kShearCapInK * s.janosi_shear_m;
+    double j_len = n.shear_m.norm();
+    if (j_len > jmax) {
+      n.shear_m *= jmax / j_len;
+      j_len = jmax;
+    }
+    Vec3 f = sigma_n * area * nw;
+    if (j_len > 0.0) {
+      const double tau_max = s.cohesion_pa + sigma * std::tan(s.friction_angle_rad);
+      const double tau = tau_max * (1.0 - std::exp(-j_len / s.janosi_shear_m));
+      f -= (tau * area / j_len) * n.shear_m;
+    }
+    force += f;
+    torque += w.cross(f);
+    n.contact_step = m.step;
+    sinkage = std::max(sinkage, ca * (n.base_m - h.p.z()));
+    m.contacts.push_back({h.i, h.j, flow});
+  }
+  m.patches.push_back({begin, m.contacts.size(), c, a, r, half_w});
+  m.stats.contact_nodes += static_cast<long>(m.hits.size());
+
+  out.force_W = force;
+  out.torque_W = torque;
+  out.normal_force_n = std::max(0.0, force.dot(under.normal_W));
+  out.sinkage_m = sinkage;
+  return out;
+}
+
+// Spreads `volume` (a height summed over cells) evenly over the rim nodes rim[begin..], but no
+// rim node is raised into the wheel above it (as Chrono caps the raise at the node's hit level):
+// water-filling, nodes under the tread take at most up to the tread, the rest share the
+// remainder. Only if every rim node is under the tread and full is the cap ignored (volume is
+// conserved first).
+void ScmSoil::Impl::DepositOnRim(const Patch& patch, size_t begin, double volume) {
+  const size_t n = rim.size() - begin;
+  if (n == 0) {
+    stats.lost_volume_m3 += volume * dx * dx;
+    return;
+  }
+  room.assign(n, 1e300);
+  for (size_t k = 0; k < n; ++k) {
+    const Work& w = rim[begin + k];
+    double z = 0.0, lat = 0.0;
+    if (WheelBottomAt(patch.center, patch.axis, patch.radius, patch.half_width, w.i * dx,
+                      w.j * dx, &z, &lat)) {
+      room[k] = std::max(0.0, z - Level(*At(w.i, w.j, false)));
+    }
+  }
+  double remaining = volume;
+  size_t open = n;
+  std::vector<bool>& full = full_scratch;
+  full.assign(n, false);
+  while (open > 0 && remaining > 0.0) {
+    const double share = remaining / static_cast<double>(open);
+    bool capped = false;
+    for (size_t k = 0; k < n; ++k) {
+      if (full[k] || room[k] >= share) continue;
+      Raise(At(rim[begin + k].i, rim[begin + k].j, false), room[k]);
+      remaining -= room[k];
+      full[k] = true;
+      --open;
+      capped = true;
+    }
+    if (capped) continue;
+    for (size_t k = 0; k < n; ++k) {
+      if (full[k]) continue;
+      Raise(At(rim[begin + k].i, rim[begin + k].j, false), share);
+    }
+    remaining = 0.0;
+  }
+  if (remaining > 0.0) {  // all rim nodes under the tread and full: raise them anyway
+    const double share = remaining / static_cast<double>(n);
+    for (size_t k = 0; k < n; ++k) Raise(At(rim[begin + k].i, rim[begin + k].j, false), share);
+  }
+}
+
+void ScmSoil::EndStep(double /*dt*/) {
+  Impl& m = *impl_;
+  const BulldozingParams& bp = config_.bulldozing;
+  if (bp.enabled) {
+    m.rim.clear();
+    for (const Impl::Patch& patch : m.patches) {
+      // Rim: untouched deformable 4-neighbours of this patch's contact nodes, in contact order.
+      double volume = 0.0;  // displaced height summed over nodes (all cells have equal area)
+      const size_t rim_begin = m.rim.size();
+      for (size_t k = patch.begin; k < patch.end; ++k) {
+        const Impl::Contact& ct = m.contacts[k];
+        volume += ct.flow_m;
+        const int di[4] = {1, -1, 0, 0}, dj[4] = {0, 0, 1, -1};
+        for (int e = 0; e < 4; ++e) {
+          Node* nb = m.At(ct.i + di[e], ct.j + dj[e], true);
+          if (nb == nullptr || nb->slot < 0 || nb->contact_step == m.step ||
+              nb->mark_step == m.step) {
+            continue;
+          }
+          nb->mark_step = m.step;
+          m.rim.push_back({ct.i + di[e], ct.j + dj[e], 0});
+        }
+      }
+      if (volume > 0.0) m.DepositOnRim(patch, rim_begin, bp.flow_factor * volume);
+    }
+    m.Erode(bp);
+  }
+  m.contacts.clear();
+  m.patches.clear();
+  ++m.step;
+  ++m.stats.steps;
+}
+
+// Slopes steeper than the erosion angle between a node and a 4-neighbour flow downhill: half the
+// excess height over 4 neighbours per pass, exactly conserving (what leaves one node arrives at
+// the other). Nodes under a wheel neither give nor take. Chrono scans the rim dilated
+// `erosion_propagations` times on every pass; here a work list starts at the rim (and at the
+// nodes still moving at the end of the last step) and follows the flow: every node that gave or
+// took soil is checked again in the next pass, up to `erosion_propagations` rings from where
+// it started. Same domain bound and settings, but only nodes that can change are visited.
+void ScmSoil::Impl::Erode(const BulldozingParams& bp) {
+  const double threshold = dx * std::tan(bp.erosion_angle_rad);
+  const int di[4] = {1, -1, 0, 0}, dj[4] = {0, 0, 1, -1};
+  active.clear();
+  auto enqueue = [&](std::vector<Work>* list, Node* n, int i, int j, int ring) {
+    if (n->queue_stamp == queue_stamp) return;
+    n->queue_stamp = queue_stamp;
+    list->push_back({i, j, ring});
+  };
+  ++queue_stamp;
+  for (const std::vector<Work>* src : {&rim, &pending}) {
+    for (const Work& w : *src) {
+      Node* n = At(w.i, w.j, false);
+      if (n != nullptr) enqueue(&active, n, w.i, w.j, w.ring);
+    }
+  }
+  pending.clear();
+  for (int pass = 0; pass < bp.erosion_iterations && !active.empty(); ++pass) {
+    ++queue_stamp;
+    next.clear();
+    for (const Work& w : active) {
+      Node* n = At(w.i, w.j, false);
+      ++stats.eroded_node_visits;
+      if (n->slot < 0 || n->contact_step == step) continue;
+      for (int e = 0; e < 4; ++e) {
+        const int ni = w.i + di[e], nj = w.j + dj[e];
+        const double dy = Level(*n) - LevelAt(ni, nj);
+        if (std::abs(dy) <= threshold) continue;
+        Node* nb = At(ni, nj, true);
+        if (nb == nullptr || nb->slot < 0 || nb->contact_step == step) continue;
+        const double q = 0.5 * (std::abs(dy) - threshold) / 4.0;
+        const double moved = dy > 0.0 ? q : -q;  // from the higher node to the lower one
+        Raise(n, -moved);
+        Raise(nb, moved);
+        if (q > kErosionSettled_m) {
+          enqueue(&next, n, w.i, w.j, w.ring);
+          if (w.ring < bp.erosion_propagations) enqueue(&next, nb, ni, nj, w.ring + 1);
+        }
+      }
+    }
+    active.swap(next);
+  }
+  pending.swap(active);  // still moving: continue next step
+}
+
+double ScmSoil::SurfaceHeight(double x_m, double y_m) const {
+  const int i = static_cast<int>(std::lround(x_m / impl_->dx));
+  const int j = static_cast<int>(std::lround(y_m / impl_->dx));
+  return impl_->LevelAt(i, j);
+}
+
+double ScmSoil::VolumeChange_m3() const {
+  double sum = 0.0;
+  for (const auto& tile : impl_->tiles) {
+    for (const Node& n : tile->nodes) {
+      if (n.slot >= 0) sum += Level(n) - n.base_m;
+    }
+  }
+  return sum * impl_->dx * impl_->dx;
+}
+
+double ScmSoil::CompactedVolume_m3() const {
+  double sum = 0.0;
+  for (const auto& tile : impl_->tiles) {
+    for (const Node& n : tile->nodes) {
+      if (n.slot >= 0) sum += n.plastic_m / n.cos_slope;
+    }
+  }
+  return sum * impl_->dx * impl_->dx;
+}
+
+const ScmStats& ScmSoil::stats() const {
+  impl_->stats.memory_bytes = impl_->tiles.size() * sizeof(Tile) +
+                              impl_->tile_index.size() * sizeof(int32_t);
+  return impl_->stats;
+}
+
+}  // namespace vb::soil
