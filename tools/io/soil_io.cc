@@ -96,4 +96,12 @@ soil::SoilConfig LoadSoil(const std::string& path) {
   return c;
 }
 
+std::optional<soil::SoilConfig> LoadSoilIfNeeded(const terrain::TaskSpec& task,
+                                                 const std::string& path) {
+  for (terrain::SurfaceClass c : task.patches.classes) {
+    if (terrain::IsDeformable(c)) return LoadSoil(path);
+  }
+  return std::nullopt;
+}
+
 }  // namespace vb::io

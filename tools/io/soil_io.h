@@ -1,14 +1,21 @@
 // Strict loading of SCM soil descriptions (data/soils/<name>.yaml, docs/soil.md).
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "vb/soil/soil_params.h"
+#include "vb/terrain/task.h"
 
 namespace vb::io {
 
 // Throws InputError (file, line, key) for a missing/unknown/duplicate key, a wrong type or an
 // out-of-range value. Angles are given in degrees in the file and stored in radians.
 soil::SoilConfig LoadSoil(const std::string& path);
+
+// The soil a task needs: LoadSoil(path) when the task has mud, sand or snow patches, nothing for
+// a rigid task (which then never reads the soil file).
+std::optional<soil::SoilConfig> LoadSoilIfNeeded(const terrain::TaskSpec& task,
+                                                 const std::string& path);
 
 }  // namespace vb::io

@@ -310,7 +310,7 @@ int Run(const Options& o) {
   const std::vector<vb::batch::TrialKey> mine = vb::batch::SelectShard(all, shard);
   const int jobs = o.jobs > 0 ? o.jobs : DefaultJobs();
   const std::string settings = "time_limit_s=" + vb::io::FormatDouble(o.time_limit_s) +
-                               " traj_every=" + std::to_string(o.traj_every);
+                               " traj_every=" + std::to_string(o.traj_every) + " soil=" + o.soil;
   const int lock_fd = PrepareOutputDir(o, settings);
   const vb::io::Provenance build = ProvenanceFor(spec.tasks.front(), all.front());
   const Plan plan = PlanResume(o, spec, mine, build);

@@ -25,6 +25,8 @@ execution:
   --jobs N             parallel trials (default: CPUs available to this process)
   --shard i/N          run only shard i of N (0-based; every N-th trial of the matrix)
   --time-limit S       simulated time limit per trial (default 60, the benchmark rule)
+  --soil NAME          soil parameters data/soils/NAME.yaml for tasks with mud, sand or snow
+                       (default: verti_bench, the original's three soils)
   --traj-every N       keep every N-th physics step in the trajectories (default 1)
   --trial-timeout S    wall-clock limit per trial; the worker is killed and the trial recorded
                        as crashed (default 0: none)
@@ -124,6 +126,8 @@ Options ParseArgs(int argc, char** argv) {
       o.jobs = static_cast<int>(n);
     } else if (a == "--shard") {
       o.shard = value();
+    } else if (a == "--soil") {
+      o.soil = value();
     } else if (a == "--time-limit") {
       o.time_limit_s = ParseDouble(a, value());
       if (!(o.time_limit_s > 0.0)) throw vb::InputError("", 0, a, "must be > 0");

@@ -18,6 +18,7 @@ struct Options {
   std::string systems = "pid";
   std::string seeds = "0";
   std::string scales;
+  std::string soil = "verti_bench";   // data/soils/<soil>.yaml for deformable patches
   std::string out_dir;
   int jobs = 0;
   std::string shard = "0/1";

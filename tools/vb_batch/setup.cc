@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "io/soil_io.h"
 #include "io/task_io.h"
 #include "io/vehicle_io.h"
 #include "vb/controllers/controller.h"
@@ -132,6 +133,9 @@ vb::batch::MatrixSpec BuildSpec(const Options& o, const std::vector<std::string>
   spec.vehicles = NameList("--vehicles", o.vehicles, vb::io::VehicleNames(DataDir()));
   spec.systems = NameList("--systems", o.systems, vb::controllers::ControllerNames());
   for (uint64_t s : ParseIntList("--seeds", o.seeds)) spec.seeds.push_back(s);
+  // The soil file is read in every worker that needs it; check it once here so a bad name or
+  // file is one clear error, not a batch of error trials.
+  vb::io::LoadSoil(DataDir() + "/soils/" + o.soil + ".yaml");
   return spec;
 }
 

@@ -8,6 +8,7 @@
 
 #include "io/batch_io.h"
 #include "io/result_io.h"
+#include "io/soil_io.h"
 #include "io/task_io.h"
 #include "io/vehicle_io.h"
 #include "setup.h"
@@ -37,7 +38,10 @@ namespace vb_batch {
       vb::runner::EpisodeRules rules;
       rules.time_limit_s = o.time_limit_s;
       rules.trajectory_every_n_steps = o.traj_every;
-      const vb::runner::TrialResult r = vb::runner::RunTrial(task, params, spec, rules);
+      const std::optional<vb::soil::SoilConfig> soil =
+          vb::io::LoadSoilIfNeeded(task, DataDir() + "/soils/" + o.soil + ".yaml");
+      const vb::runner::TrialResult r =
+          vb::runner::RunTrial(task, params, spec, rules, soil ? &*soil : nullptr);
       // Trajectory first: a record's presence implies its trajectory is complete.
       vb::io::WriteTrajectoryCsv(r, stem_path + "_traj.csv");
       vb::io::WriteTrialJson(r, stem_path + ".json", vb::io::MakeProvenance(task, spec));

@@ -147,13 +147,8 @@ int Run(const Options& o) {
       vb::io::LoadVehicle(data_dir + "/vehicles/" + o.vehicle + ".yaml");
 
   // Soil parameters only when the task needs them (a rigid task never reads the soil file).
-  std::optional<vb::soil::SoilConfig> soil;
-  for (vb::terrain::SurfaceClass c : task.patches.classes) {
-    if (vb::terrain::IsDeformable(c)) {
-      soil = vb::io::LoadSoil(data_dir + "/soils/" + o.soil + ".yaml");
-      break;
-    }
-  }
+  const std::optional<vb::soil::SoilConfig> soil =
+      vb::io::LoadSoilIfNeeded(task, data_dir + "/soils/" + o.soil + ".yaml");
 
   std::vector<int> pairs;
   if (o.pair == "all") {
