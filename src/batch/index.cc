@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "vb/engine/error.h"
+#include "vb/engine/text_format.h"
 
 namespace vb::batch {
 namespace {
@@ -19,22 +20,9 @@ const char* const kColumns[] = {
     "host",         "wall_time_s", "task_file",    "message"};
 constexpr size_t kNumColumns = sizeof(kColumns) / sizeof(kColumns[0]);
 
-std::string Num(double x) {
-  if (!std::isfinite(x)) return "";
-  char buf[32];
-  std::snprintf(buf, sizeof(buf), "%.17g", x);
-  return buf;
-}
+std::string Num(double x) { return std::isfinite(x) ? FormatExact(x) : std::string(); }
 
-std::string Field(const std::string& s) {
-  if (s.find_first_of(",\"\r\n") == std::string::npos) return s;
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"') out += '"';
-    out += c;
-  }
-  return out + "\"";
-}
+std::string Field(const std::string& s) { return CsvField(s); }
 
 // Splits CSV text into records of fields (RFC 4180 quoting; newlines allowed inside quotes).
 // Each record remembers its 1-based starting line.

@@ -15,6 +15,7 @@
 
 #include "io/build_info.h"
 #include "vb/engine/error.h"
+#include "vb/engine/text_format.h"
 
 namespace vb::io {
 
@@ -22,22 +23,7 @@ namespace {
 
 constexpr double kRadToDeg = 180.0 / kPi;
 
-std::string Number(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof(buf), "%.17g", x);
-  return buf;
-}
-
-// CSV field: quoted (with doubled quotes) only when it contains a separator, quote or newline.
-std::string CsvField(const std::string& s) {
-  if (s.find_first_of(",\"\r\n") == std::string::npos) return s;
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"') out += '"';
-    out += c;
-  }
-  return out + "\"";
-}
+std::string Number(double x) { return FormatExact(x); }
 
 void WriteAtomically(const std::string& path, const std::string& text) {
   const std::string tmp = path + ".tmp." + std::to_string(::getpid());
