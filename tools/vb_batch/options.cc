@@ -1,6 +1,6 @@
+#include "io/cli_args.h"
 #include "options.h"
 
-#include <cerrno>
 #include <cstdlib>
 
 #include "vb/engine/error.h"
@@ -47,51 +47,17 @@ stopped, the index is written; run the same command to resume).
 
 
 
-std::vector<std::string> Split(const std::string& s, char sep) {
-  std::vector<std::string> out;
-  size_t start = 0;
-  while (true) {
-    const size_t p = s.find(sep, start);
-    out.push_back(s.substr(start, p == std::string::npos ? std::string::npos : p - start));
-    if (p == std::string::npos) return out;
-    start = p + 1;
-  }
-}
-
-namespace {
-
-uint64_t ParseU64(const std::string& flag, const std::string& text) {
-  char* end = nullptr;
-  errno = 0;
-  const unsigned long long v = std::strtoull(text.c_str(), &end, 10);
-  if (text.empty() || *end != '\0' || errno != 0 || text[0] == '-' || text[0] == '+') {
-    throw vb::InputError("", 0, flag, "'" + text + "' is not a non-negative integer");
-  }
-  return v;
-}
-}  // namespace
-
-double ParseDouble(const std::string& flag, const std::string& text) {
-  char* end = nullptr;
-  errno = 0;
-  const double v = std::strtod(text.c_str(), &end);
-  if (text.empty() || *end != '\0' || errno != 0 || !(v >= 0.0)) {
-    throw vb::InputError("", 0, flag, "'" + text + "' is not a valid non-negative number");
-  }
-  return v;
-}
-
 // "0,3,5-9" -> {0, 3, 5, 6, 7, 8, 9}
 std::vector<uint64_t> ParseIntList(const std::string& flag, const std::string& text) {
   std::vector<uint64_t> out;
-  for (const std::string& item : Split(text, ',')) {
+  for (const std::string& item : vb::io::SplitList(text, ',')) {
     const size_t dash = item.find('-', 1);
     if (dash == std::string::npos) {
-      out.push_back(ParseU64(flag, item));
+      out.push_back(vb::io::ParseU64(flag, item));
       continue;
     }
-    const uint64_t a = ParseU64(flag, item.substr(0, dash));
-    const uint64_t b = ParseU64(flag, item.substr(dash + 1));
+    const uint64_t a = vb::io::ParseU64(flag, item.substr(0, dash));
+    const uint64_t b = vb::io::ParseU64(flag, item.substr(dash + 1));
     if (b < a || b - a > 100000) throw vb::InputError("", 0, flag, "bad range '" + item + "'");
     for (uint64_t v = a; v <= b; ++v) out.push_back(v);
   }
@@ -100,49 +66,41 @@ std::vector<uint64_t> ParseIntList(const std::string& flag, const std::string& t
 
 Options ParseArgs(int argc, char** argv) {
   Options o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw vb::InputError("", 0, a, "missing value");
-      return argv[++i];
-    };
+  vb::io::ArgReader args(argc, argv);
+  while (args.Next()) {
+    const std::string& a = args.arg();
     if (a == "--help" || a == "-h") {
       o.help = true;
     } else if (a == "--pairs") {
-      o.pairs = value();
+      o.pairs = args.Value();
     } else if (a == "--vehicles") {
-      o.vehicles = value();
+      o.vehicles = args.Value();
     } else if (a == "--systems") {
-      o.systems = value();
+      o.systems = args.Value();
     } else if (a == "--seeds") {
-      o.seeds = value();
+      o.seeds = args.Value();
     } else if (a == "--scale") {
-      o.scales = value();
+      o.scales = args.Value();
     } else if (a == "--out") {
-      o.out_dir = value();
+      o.out_dir = args.Value();
     } else if (a == "--jobs") {
-      const uint64_t n = ParseU64(a, value());
-      if (n < 1 || n > 4096) throw vb::InputError("", 0, a, "must be in [1, 4096]");
-      o.jobs = static_cast<int>(n);
+      o.jobs = static_cast<int>(args.U64Value(1, 4096));
     } else if (a == "--shard") {
-      o.shard = value();
+      o.shard = args.Value();
     } else if (a == "--soil") {
-      o.soil = value();
+      o.soil = args.Value();
     } else if (a == "--time-limit") {
-      o.time_limit_s = ParseDouble(a, value());
-      if (!(o.time_limit_s > 0.0)) throw vb::InputError("", 0, a, "must be > 0");
+      o.time_limit_s = args.NumberValue(/*positive=*/true);
     } else if (a == "--traj-every") {
-      const uint64_t n = ParseU64(a, value());
-      if (n < 1 || n > 1000000) throw vb::InputError("", 0, a, "must be in [1, 1000000]");
-      o.traj_every = static_cast<int>(n);
+      o.traj_every = static_cast<int>(args.U64Value(1, 1000000));
     } else if (a == "--trial-timeout") {
-      o.trial_timeout_s = ParseDouble(a, value());
+      o.trial_timeout_s = args.NumberValue();
     } else if (a == "--rerun-stale") {
       o.rerun_stale = true;
     } else if (a == "--quiet") {
       o.quiet = true;
-    } else if (!a.empty() && a[0] == '-') {
-      throw vb::InputError("", 0, a, "unknown option (see --help)");
+    } else if (args.IsFlag()) {
+      args.Unknown();
     } else {
       o.envs.push_back(a);
     }

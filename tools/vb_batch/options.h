@@ -33,8 +33,6 @@ struct Options {
 // Throws vb::InputError naming the flag.
 Options ParseArgs(int argc, char** argv);
 
-std::vector<std::string> Split(const std::string& s, char sep);
-double ParseDouble(const std::string& flag, const std::string& text);      // >= 0
 std::vector<uint64_t> ParseIntList(const std::string& flag, const std::string& text);  // "0,3,5-9"
 
 }  // namespace vb_batch

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "io/cli_args.h"
 #include "io/soil_io.h"
 #include "io/task_io.h"
 #include "io/vehicle_io.h"
@@ -21,20 +22,15 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string Join(const std::vector<std::string>& v) {
-  std::string s;
-  for (const std::string& x : v) s += (s.empty() ? "" : ", ") + x;
-  return s;
-}
 
 // Names from a LIST|all flag, each checked against `valid`.
 std::vector<std::string> NameList(const std::string& flag, const std::string& text,
                                   const std::vector<std::string>& valid) {
   if (text == "all") return valid;
-  std::vector<std::string> out = Split(text, ',');
+  std::vector<std::string> out = vb::io::SplitList(text, ',');
   for (const std::string& n : out) {
     if (std::find(valid.begin(), valid.end(), n) == valid.end()) {
-      throw vb::InputError("", 0, flag, "unknown name '" + n + "'; valid: " + Join(valid));
+      throw vb::InputError("", 0, flag, "unknown name '" + n + "'; valid: " + vb::io::JoinNames(valid));
     }
   }
   return out;
@@ -95,7 +91,9 @@ vb::batch::MatrixSpec BuildSpec(const Options& o, const std::vector<std::string>
   vb::batch::MatrixSpec spec;
   std::vector<double> scales;
   if (!o.scales.empty()) {
-    for (const std::string& s : Split(o.scales, ',')) scales.push_back(ParseDouble("--scale", s));
+    for (const std::string& s : vb::io::SplitList(o.scales, ',')) {
+      scales.push_back(vb::io::ParseNonNegative("--scale", s));
+    }
   }
   for (const std::string& f : files) {
     vb::batch::MatrixTask t;

@@ -1,6 +1,5 @@
 // vb_gen: generates one benchmark environment (task file + 16-bit height image) from a seed.
 // Thin: argument parsing over GenerateTask (src/terrain/generator.cc) and tools/io.
-#include <cerrno>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -10,6 +9,7 @@
 #include <optional>
 #include <utility>
 
+#include "io/cli_args.h"
 #include "io/task_io.h"
 #include "io/world_picture.h"
 #include "vb/engine/error.h"
@@ -81,25 +81,16 @@ E ParseChoice(const std::string& flag, const std::string& text, const E (&values
 
 Options ParseArgs(int argc, char** argv) {
   Options o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw vb::InputError("", 0, a, "missing value");
-      return argv[++i];
-    };
+  vb::io::ArgReader args(argc, argv);
+  while (args.Next()) {
+    const std::string& a = args.arg();
     if (a == "--help" || a == "-h") {
       o.help = true;
     } else if (a == "--seed") {
-      const std::string text = value();
-      char* end = nullptr;
-      errno = 0;
-      o.gen.seed = std::strtoull(text.c_str(), &end, 10);
-      if (text.empty() || *end != '\0' || errno != 0 || text[0] == '-') {
-        throw vb::InputError("", 0, a, "'" + text + "' is not an unsigned 64-bit integer");
-      }
+      o.gen.seed = args.U64Value();
       o.have_seed = true;
     } else if (a == "--name") {
-      o.gen.name = value();
+      o.gen.name = args.Value();
       if (o.gen.name.empty() || o.gen.name.find('/') != std::string::npos) {
         throw vb::InputError("", 0, a, "must be a non-empty file stem without '/'");
       }
@@ -107,44 +98,37 @@ Options ParseArgs(int argc, char** argv) {
     } else if (a == "--elevation") {
       static constexpr ElevationLevel kAll[] = {ElevationLevel::kLow, ElevationLevel::kMid,
                                                 ElevationLevel::kHigh};
-      o.gen.elevation = ParseChoice(a, value(), kAll, vb::terrain::ElevationLevelName);
+      o.gen.elevation = ParseChoice(a, args.Value(), kAll, vb::terrain::ElevationLevelName);
       o.have_elevation = true;
     } else if (a == "--terrain") {
       static constexpr TerrainType kAll[] = {TerrainType::kRigid, TerrainType::kDeformable,
                                              TerrainType::kMixed};
-      o.gen.terrain = ParseChoice(a, value(), kAll, vb::terrain::TerrainTypeName);
+      o.gen.terrain = ParseChoice(a, args.Value(), kAll, vb::terrain::TerrainTypeName);
       o.have_terrain = true;
     } else if (a == "--density") {
       static constexpr ObstacleDensity kAll[] = {ObstacleDensity::kSparse, ObstacleDensity::kMedium,
                                                  ObstacleDensity::kDense};
-      o.gen.density = ParseChoice(a, value(), kAll, vb::terrain::ObstacleDensityName);
+      o.gen.density = ParseChoice(a, args.Value(), kAll, vb::terrain::ObstacleDensityName);
       o.have_density = true;
     } else if (a == "--env") {
-      const std::string text = value();
-      char* end = nullptr;
-      const long k = std::strtol(text.c_str(), &end, 10);
-      if (text.empty() || *end != '\0' || k < 0 || k >= vb::terrain::kBenchmarkEnvironments) {
-        throw vb::InputError("", 0, a, "'" + text + "' is not an environment id in [0, " +
-                                           std::to_string(vb::terrain::kBenchmarkEnvironments - 1) +
-                                           "]");
-      }
+      const uint64_t k = args.U64Value(0, vb::terrain::kBenchmarkEnvironments - 1);
       const std::string name = o.gen.name;
       o.gen = vb::terrain::BenchmarkEnvironment(static_cast<int>(k));
       if (o.have_name) o.gen.name = name;
       o.have_env = true;
     } else if (a == "--scale") {
-      const std::string text = value();
+      const std::string text = args.Value();
       const std::optional<double> f = vb::terrain::ParseScaleFactor(text);
       if (!f) throw vb::InputError("", 0, a, "'" + text + "' is not a factor > 0 (e.g. 1/6, 0.1)");
       o.scale = *f;
     } else if (a == "--picture") {
-      o.picture = value();
+      o.picture = args.Value();
     } else if (a == "--out") {
-      o.out_dir = value();
+      o.out_dir = args.Value();
     } else if (a == "--image-dir") {
-      o.image_dir = value();
+      o.image_dir = args.Value();
     } else {
-      throw vb::InputError("", 0, a, "unknown argument (see --help)");
+      args.Unknown();
     }
   }
   if (o.help) return o;

@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "io/cli_args.h"
 #include "io/original_io.h"
 #include "io/task_io.h"
 #include "io/world_picture.h"
@@ -48,38 +49,35 @@ struct Options {
 
 Options ParseArgs(int argc, char** argv) {
   Options o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw vb::InputError("", 0, a, "missing value");
-      return argv[++i];
-    };
+  vb::io::ArgReader args(argc, argv);
+  while (args.Next()) {
+    const std::string& a = args.arg();
     if (a == "--help" || a == "-h") {
       o.help = true;
     } else if (a == "--config") {
-      o.config = value();
+      o.config = args.Value();
     } else if (a == "--world") {
-      o.world = value();
+      o.world = args.Value();
     } else if (a == "--labels") {
-      o.labels = value();
+      o.labels = args.Value();
     } else if (a == "--out") {
-      o.out_dir = value();
+      o.out_dir = args.Value();
     } else if (a == "--image-dir") {
-      o.image_dir = value();
+      o.image_dir = args.Value();
     } else if (a == "--name") {
-      o.name = value();
+      o.name = args.Value();
       if (o.name.empty() || o.name.find('/') != std::string::npos) {
         throw vb::InputError("", 0, a, "must be a non-empty file stem without '/'");
       }
     } else if (a == "--scale") {
-      const std::string text = value();
+      const std::string text = args.Value();
       const std::optional<double> f = vb::terrain::ParseScaleFactor(text);
       if (!f) throw vb::InputError("", 0, a, "'" + text + "' is not a factor > 0 (e.g. 1/6, 0.1)");
       o.scale = *f;
     } else if (a == "--picture") {
-      o.picture = value();
+      o.picture = args.Value();
     } else {
-      throw vb::InputError("", 0, a, "unknown argument (see --help)");
+      args.Unknown();
     }
   }
   if (o.help) return o;

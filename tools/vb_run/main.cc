@@ -1,7 +1,6 @@
 // vb_run: runs trials of one task (pairs x one seed x one vehicle x one system) and writes their
 // results. Thin on purpose: parse flags -> load -> RunTrial -> write.
 #include <algorithm>
-#include <cerrno>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -10,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "io/cli_args.h"
 #include "io/result_io.h"
 #include "io/soil_io.h"
 #include "io/task_io.h"
@@ -64,59 +64,33 @@ struct Options {
   bool help = false;
 };
 
-std::string Join(const std::vector<std::string>& names) {
-  std::string s;
-  for (const std::string& n : names) s += (s.empty() ? "" : ", ") + n;
-  return s;
-}
-
-// Parses a whole-string number; throws InputError naming the flag otherwise.
-template <typename T>
-T ParseNumber(const std::string& flag, const std::string& text, T (*parse)(const char*, char**)) {
-  char* end = nullptr;
-  errno = 0;
-  const T v = parse(text.c_str(), &end);
-  if (text.empty() || *end != '\0' || errno != 0 || text[0] == '-') {
-    throw vb::InputError("", 0, flag, "'" + text + "' is not a valid non-negative number");
-  }
-  return v;
-}
-unsigned long long ParseU64(const char* s, char** e) { return std::strtoull(s, e, 10); }
-double ParseDouble(const char* s, char** e) { return std::strtod(s, e); }
-
 Options ParseArgs(int argc, char** argv) {
   Options o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw vb::InputError("", 0, a, "missing value");
-      return argv[++i];
-    };
+  vb::io::ArgReader args(argc, argv);
+  while (args.Next()) {
+    const std::string& a = args.arg();
     if (a == "--help" || a == "-h") {
       o.help = true;
     } else if (a == "--vehicle") {
-      o.vehicle = value();
+      o.vehicle = args.Value();
     } else if (a == "--system") {
-      o.system = value();
+      o.system = args.Value();
     } else if (a == "--soil") {
-      o.soil = value();
+      o.soil = args.Value();
     } else if (a == "--pair") {
-      o.pair = value();
+      o.pair = args.Value();
     } else if (a == "--seed") {
-      o.seed = ParseNumber<unsigned long long>(a, value(), ParseU64);
+      o.seed = args.U64Value();
     } else if (a == "--out") {
-      o.out_dir = value();
+      o.out_dir = args.Value();
     } else if (a == "--traj-every") {
-      const unsigned long long n = ParseNumber<unsigned long long>(a, value(), ParseU64);
-      if (n < 1 || n > 1000000) throw vb::InputError("", 0, a, "must be in [1, 1000000]");
-      o.traj_every = static_cast<int>(n);
+      o.traj_every = static_cast<int>(args.U64Value(1, 1000000));
     } else if (a == "--time-limit") {
-      o.time_limit_s = ParseNumber<double>(a, value(), ParseDouble);
-      if (!(o.time_limit_s > 0.0)) throw vb::InputError("", 0, a, "must be > 0");
+      o.time_limit_s = args.NumberValue(/*positive=*/true);
     } else if (a == "--quiet") {
       o.quiet = true;
-    } else if (!a.empty() && a[0] == '-') {
-      throw vb::InputError("", 0, a, "unknown option (see --help)");
+    } else if (args.IsFlag()) {
+      args.Unknown();
     } else if (o.task_path.empty()) {
       o.task_path = a;
     } else {
@@ -135,12 +109,12 @@ int Run(const Options& o) {
   const std::vector<std::string> vehicles = vb::io::VehicleNames(data_dir);
   if (std::find(vehicles.begin(), vehicles.end(), o.vehicle) == vehicles.end()) {
     throw vb::InputError("", 0, "--vehicle", "unknown vehicle '" + o.vehicle + "' in " + data_dir +
-                                                 "/vehicles; valid: " + Join(vehicles));
+                                                 "/vehicles; valid: " + vb::io::JoinNames(vehicles));
   }
   const std::vector<std::string> systems = vb::controllers::ControllerNames();
   if (std::find(systems.begin(), systems.end(), o.system) == systems.end()) {
     throw vb::InputError("", 0, "--system",
-                         "unknown system '" + o.system + "'; valid: " + Join(systems));
+                         "unknown system '" + o.system + "'; valid: " + vb::io::JoinNames(systems));
   }
   const vb::terrain::TaskSpec task = vb::io::LoadTask(o.task_path);
   const vb::vehicles::VehicleParams params =
@@ -154,7 +128,7 @@ int Run(const Options& o) {
   if (o.pair == "all") {
     for (size_t k = 0; k < task.pairs.size(); ++k) pairs.push_back(static_cast<int>(k));
   } else {
-    pairs.push_back(static_cast<int>(ParseNumber<unsigned long long>("--pair", o.pair, ParseU64)));
+    pairs.push_back(static_cast<int>(vb::io::ParseU64("--pair", o.pair)));
   }
 
   const std::string out_dir = o.out_dir.empty() ? "results/" + task.name : o.out_dir;

@@ -1,0 +1,79 @@
+#include "io/cli_args.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+
+#include "vb/engine/error.h"
+
+namespace vb::io {
+
+bool ArgReader::Next() {
+  if (i_ + 1 >= argc_) return false;
+  arg_ = argv_[++i_];
+  return true;
+}
+
+std::string ArgReader::Value() {
+  if (i_ + 1 >= argc_) throw InputError("", 0, arg_, "missing value");
+  return argv_[++i_];
+}
+
+uint64_t ArgReader::U64Value(uint64_t lo, uint64_t hi) {
+  const std::string flag = arg_;
+  const uint64_t v = ParseU64(flag, Value());
+  if (v < lo || v > hi) {
+    throw InputError("", 0, flag,
+                     "must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+  }
+  return v;
+}
+
+double ArgReader::NumberValue(bool positive) {
+  const std::string flag = arg_;
+  const double v = ParseNonNegative(flag, Value());
+  if (positive && !(v > 0.0)) throw InputError("", 0, flag, "must be > 0");
+  return v;
+}
+
+void ArgReader::Unknown() const { throw InputError("", 0, arg_, "unknown option (see --help)"); }
+
+uint64_t ParseU64(const std::string& flag, const std::string& text) {
+  char* end = nullptr;
+  errno = 0;
+  const unsigned long long v = std::strtoull(text.c_str(), &end, 10);
+  if (text.empty() || *end != '\0' || errno != 0 || text[0] == '-' || text[0] == '+' ||
+      text[0] == ' ') {
+    throw InputError("", 0, flag, "'" + text + "' is not a non-negative integer");
+  }
+  return v;
+}
+
+double ParseNonNegative(const std::string& flag, const std::string& text) {
+  char* end = nullptr;
+  errno = 0;
+  const double v = std::strtod(text.c_str(), &end);
+  if (text.empty() || *end != '\0' || errno != 0 || !std::isfinite(v) || !(v >= 0.0)) {
+    throw InputError("", 0, flag, "'" + text + "' is not a valid non-negative number");
+  }
+  return v;
+}
+
+std::vector<std::string> SplitList(const std::string& text, char sep) {
+  std::vector<std::string> out;
+  size_t start = 0;
+  while (true) {
+    const size_t p = text.find(sep, start);
+    out.push_back(text.substr(start, p == std::string::npos ? std::string::npos : p - start));
+    if (p == std::string::npos) return out;
+    start = p + 1;
+  }
+}
+
+std::string JoinNames(const std::vector<std::string>& names) {
+  std::string s;
+  for (const std::string& n : names) s += (s.empty() ? "" : ", ") + n;
+  return s;
+}
+
+}  // namespace vb::io
