@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "vb/engine/types.h"
+#include "vb/vehicles/suspension_kinematics.h"
 
 namespace vb::vehicles {
 
@@ -19,15 +20,33 @@ struct ChassisParams {
   Vec3 collision_box_size_m = Vec3::Zero();  // full lengths
 };
 
-// Vertical strut suspension (first version): the wheel carrier slides along chassis z.
-// Travel s is positive in compression (wheel moves up relative to the chassis); s = 0 at the
-// design position. Strut force on the wheel (downwards, N) = preload + k*s + c*ds/dt.
+// Suspension of one axle. In the multibody tree every wheel carrier slides along chassis z (a
+// closed wishbone loop cannot be a Bullet multibody tree); travel s is positive in compression
+// (wheel up relative to the chassis), s = 0 at the design position.
+//  - kStrut: the slider is the suspension: force on the wheel (down) = preload + k*s + c*ds/dt.
+//  - kDoubleWishbone: Chrono's reduced double wishbone. The published hard points decide the
+//    shock length L(s) (motion ratio -dL/ds, wheel lateral motion and camber are neglected) and,
+//    on steered axles, the road-wheel angle vs rack travel. The spring-damper acts along the shock:
+//    F = -k (L - L0) - c dL/dt (+ pushes the mounts apart), i.e. -F dL/ds on the slider.
+// Both: progressive bump and rebound stops (table of force vs deflection beyond the stop) engage
+// at s = +bump_travel_m and s = -rebound_travel_m.
+enum class SuspensionModel { kStrut, kDoubleWishbone };
+
 struct SuspensionParams {
-  double stiffness_npm = 0.0;       // wheel rate (spring rate times motion ratio squared)
-  double damping_nspm = 0.0;        // wheel-rate damping
+  SuspensionModel model = SuspensionModel::kStrut;
+  // kStrut
+  double stiffness_npm = 0.0;       // wheel rate
   double preload_n = 0.0;           // spring force at s = 0
-  double bump_travel_m = 0.0;       // max compression (bump stop)
-  double rebound_travel_m = 0.0;    // max extension (rebound stop)
+  // kDoubleWishbone
+  double spring_stiffness_npm = 0.0;   // along the shock
+  double spring_free_length_m = 0.0;
+  DoubleWishboneHardpoints hardpoints; // left side, suspension frame (only differences matter)
+  // both
+  double damping_nspm = 0.0;        // kStrut: at the wheel; kDoubleWishbone: along the shock
+  double bump_travel_m = 0.0;       // stop engagement (compression)
+  double rebound_travel_m = 0.0;    // stop engagement (extension)
+  std::vector<double> stop_deflection_m;  // ascending, first 0
+  std::vector<double> stop_force_n;       // same length, first 0
   double carrier_mass_kg = 0.0;     // upright + spindle
   Vec3 carrier_inertia_kgm2 = Vec3::Ones();
 };
@@ -39,9 +58,13 @@ struct WheelParams {
   Vec3 inertia_kgm2 = Vec3::Ones(); // (x, spin y, z)
 };
 
-// Rigid tire contact: normal penalty spring-damper, elastic bristle for static friction,
-// Coulomb limit mu = min(tire mu, patch mu) (Chrono's NSC composition rule).
+// Tire model. kRigid: Chrono's rigid tire as a cylinder against the terrain surface; normal
+// penalty spring-damper, elastic bristle for static friction, Coulomb limit
+// mu = min(tire mu, patch mu) (Chrono's NSC composition rule).
+enum class TireModel { kRigid };
+
 struct TireParams {
+  TireModel model = TireModel::kRigid;
   double friction = 0.9;                 // tire material mu
   double normal_stiffness_npm = 0.0;
   double normal_damping_nspm = 0.0;
@@ -59,9 +82,16 @@ struct AxleParams {
   SuspensionParams suspension;
 };
 
+// kAckermann: ideal geometry, the inner wheel gets max_angle_rad. kRackPinion: Chrono's
+// rack-pinion, rack travel = input * max_pinion_angle * pinion_radius, road-wheel angles from
+// the steered axles' double-wishbone tie-rod geometry (needs kDoubleWishbone suspension there).
+enum class SteeringModel { kAckermann, kRackPinion };
+
 struct SteeringParams {
-  double max_angle_rad = 0.0;       // road-wheel angle of the inner wheel at full input
-  bool ackermann = true;            // inner/outer angles from Ackermann geometry
+  SteeringModel model = SteeringModel::kAckermann;
+  double max_angle_rad = 0.0;          // kAckermann
+  double max_pinion_angle_rad = 0.0;   // kRackPinion
+  double pinion_radius_m = 0.0;        // kRackPinion
 };
 
 struct EngineMapPoint {
@@ -80,6 +110,10 @@ struct TransmissionParams {
   double reverse_ratio = 0.0;           // magnitude (> 0) of the reverse gear ratio
   std::vector<double> upshift_rpm;      // per gear
   std::vector<double> downshift_rpm;    // per gear
+  // Shift logic (vb addition, see powertrain.h): upshifts are judged on the engine speed the
+  // vehicle's ground speed implies (so wheels spinning against an obstacle do not upshift), and
+  // a gear is held at least this long after a shift (hysteresis against hunting).
+  double min_time_in_gear_s = 0.0;
 };
 
 struct DrivelineParams {
