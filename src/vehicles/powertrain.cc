@@ -115,7 +115,10 @@ void ComputeWheelTorques(const VehicleParams& p, double throttle,
       }
     }
     if (nf > 0 && nr > 0) {
-      const double t = ClutchTorque(front / nf - rear / nr, limit);
+      // The central clutch sits between the front and rear driveshafts, before the conical gears:
+      // shaft speed = wheel speed / conical ratio, wheel-side torque = shaft torque / ratio.
+      const double k = p.driveline.conical_ratio;
+      const double t = ClutchTorque((front / nf - rear / nr) / k, limit) / k;
       for (size_t i = 0; i < n; ++i) {
         if (!driven[i]) continue;
         (*torques)[i] += (i < half ? -t / nf : t / nr);

@@ -84,7 +84,20 @@ constexpr double kHardLimitBeyondStops_m = 0.03;
 Vehicle::Vehicle(const VehicleParams& params, const terrain::Terrain& terrain, const Pose& pose_W,
                  engine::PhysicsWorld* world)
     : params_(params), terrain_(terrain), world_(world), in_(std::make_unique<Internals>()) {
-  const ChassisParams& ch = params_.chassis;
+  // chassis plus the steering link (rides with the chassis): one rigid base body
+  ChassisParams ch = params_.chassis;
+  if (params_.steering.link_mass_kg > 0.0) {
+    const double m1 = ch.mass_kg, m2 = params_.steering.link_mass_kg, m = m1 + m2;
+    const Vec3 p2 = params_.steering.link_position_B;
+    const Vec3 com = (m1 * ch.com_B + m2 * p2) / m;
+    auto parallel_axis = [](double mass, const Vec3& d) {  // diagonal terms only
+      return Vec3(mass * (d.y() * d.y() + d.z() * d.z()), mass * (d.x() * d.x() + d.z() * d.z()),
+                  mass * (d.x() * d.x() + d.y() * d.y()));
+    };
+    ch.inertia_kgm2 += Vec3::Ones() + parallel_axis(m1, ch.com_B - com) + parallel_axis(m2, p2 - com);
+    ch.mass_kg = m;
+    ch.com_B = com;
+  }
   in_->com_B = ch.com_B;
 
   // chassis: base body at the COM, collision box offset from it

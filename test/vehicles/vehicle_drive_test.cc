@@ -39,7 +39,7 @@ struct Sim {
     }
   }
   double TotalMass() const {
-    double m = params.chassis.mass_kg;
+    double m = params.chassis.mass_kg + params.steering.link_mass_kg;
     for (const auto& a : params.axles) m += 2 * (a.suspension.carrier_mass_kg + params.wheel.mass_kg);
     return m;
   }

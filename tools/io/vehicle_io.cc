@@ -165,7 +165,9 @@ std::vector<AxleParams> ReadAxles(const StrictNode& node) {
 vehicles::SteeringParams ReadSteering(const StrictNode& node) {
   vehicles::SteeringParams p;
   const std::string model =
-      ReadModel(node, {"model", "max_angle_rad", "max_pinion_angle_rad", "pinion_radius_m"},
+      ReadModel(node,
+                {"model", "max_angle_rad", "max_pinion_angle_rad", "pinion_radius_m",
+                 "link_mass_kg", "link_position_B"},
                 {"ackermann", "rack_pinion"});
   // Ackermann geometry and the kinematics break down at a right angle.
   auto below_right_angle = [](const StrictNode& n) {
@@ -178,10 +180,13 @@ vehicles::SteeringParams ReadSteering(const StrictNode& node) {
     p.model = vehicles::SteeringModel::kAckermann;
     p.max_angle_rad = below_right_angle(m.Required("max_angle_rad"));
   } else {
-    const StrictMap m = node.AsMap({"model", "max_pinion_angle_rad", "pinion_radius_m"});
+    const StrictMap m = node.AsMap({"model", "max_pinion_angle_rad", "pinion_radius_m",
+                                    "link_mass_kg", "link_position_B"});
     p.model = vehicles::SteeringModel::kRackPinion;
     p.max_pinion_angle_rad = below_right_angle(m.Required("max_pinion_angle_rad"));
     p.pinion_radius_m = m.Required("pinion_radius_m").AsPositive();
+    p.link_mass_kg = m.Required("link_mass_kg").AsNonNegative();
+    p.link_position_B = m.Required("link_position_B").AsVec3();
   }
   return p;
 }

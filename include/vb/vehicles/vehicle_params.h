@@ -92,6 +92,10 @@ struct SteeringParams {
   double max_angle_rad = 0.0;          // kAckermann
   double max_pinion_angle_rad = 0.0;   // kRackPinion
   double pinion_radius_m = 0.0;        // kRackPinion
+  // kRackPinion: the steering link (rack) moves only along y, so its mass is lumped into the
+  // chassis (at this point, chassis frame; inertia (1,1,1) kg m^2 as Chrono's).
+  double link_mass_kg = 0.0;
+  Vec3 link_position_B = Vec3::Zero();
 };
 
 struct EngineMapPoint {
