@@ -294,7 +294,8 @@ void Vehicle::Synchronize(double dt) {
       }
     }
     const ContactGeometry geo =
-        FindWheelContact(terrain_, wheel.position, axis_W, params_.wheel.radius_m);
+        FindWheelContact(terrain_, wheel.position, axis_W, params_.wheel.radius_m,
+                         params_.wheel.width_m);
     Vec3 v_point = Vec3::Zero();
     if (geo.in_contact) v_point = world_->LinkPointVelocity(body_, c.wheel_link, geo.point_W);
     TireParams tire = params_.tire;
