@@ -10,6 +10,7 @@
 #include "vb/vehicles/powertrain.h"
 #include "vb/vehicles/suspension_kinematics.h"
 #include "vb/vehicles/tire_contact.h"
+#include "vb/vehicles/tmeasy_tire.h"
 
 namespace vb::vehicles {
 
@@ -21,6 +22,7 @@ struct Vehicle::Internals {
     double side = 1.0;      // +1 left, -1 right
     const AxleParams* axle = nullptr;
     BristleState bristle;
+    TmeasyState tmeasy;
     Table1D shock_length;   // kDoubleWishbone: shock length vs wheel travel (m)
   };
   std::vector<Corner> corners;
@@ -286,6 +288,7 @@ void Vehicle::Synchronize(double dt) {
         world_->ApplyLinkForce(body_, c.wheel_link, out.force_W, wheel.position);
         world_->ApplyLinkTorque(body_, c.wheel_link, out.torque_W);
         c.bristle = BristleState();
+        c.tmeasy = TmeasyState();
         ws.in_contact = out.normal_force_n > 0.0;
         ws.surface = out.surface;
         ws.normal_force_n = out.normal_force_n;
@@ -293,14 +296,28 @@ void Vehicle::Synchronize(double dt) {
         continue;
       }
     }
+    const bool tmeasy = params_.tire.model == TireModel::kTMeasy;
     const ContactGeometry geo =
-        FindWheelContact(terrain_, wheel.position, axis_W, params_.wheel.radius_m,
-                         params_.wheel.width_m);
+        tmeasy ? FindWheelContact(terrain_, wheel.position, axis_W, params_.tire.unloaded_radius_m,
+                                  params_.tire.width_m)
+               : FindWheelContact(terrain_, wheel.position, axis_W, params_.wheel.radius_m,
+                                  params_.wheel.width_m);
     Vec3 v_point = Vec3::Zero();
     if (geo.in_contact) v_point = world_->LinkPointVelocity(body_, c.wheel_link, geo.point_W);
     TireParams tire = params_.tire;
-    tire.normal_damping_nspm = ImplicitDamping(tire.normal_damping_nspm, dt, unsprung_kg);
-    const ContactForce f = ComputeContactForce(tire, geo, v_point, dt, &c.bristle);
+    ContactForce f;
+    if (tmeasy) {
+      tire.vertical_damping_nspm = ImplicitDamping(tire.vertical_damping_nspm, dt, unsprung_kg);
+      const Vec3 v_center =
+          geo.in_contact ? world_->LinkPointVelocity(body_, c.wheel_link, wheel.position)
+                         : Vec3::Zero();
+      f = ComputeTmeasyForce(tire, geo, axis_W, v_point, v_center, in_->wheel_speeds[i], dt,
+                             &c.tmeasy);
+      if (geo.in_contact) world_->ApplyLinkTorque(body_, c.wheel_link, f.torque_W);
+    } else {
+      tire.normal_damping_nspm = ImplicitDamping(tire.normal_damping_nspm, dt, unsprung_kg);
+      f = ComputeContactForce(tire, geo, v_point, dt, &c.bristle);
+    }
     if (geo.in_contact) world_->ApplyLinkForce(body_, c.wheel_link, f.force_W, geo.point_W);
 
     ws.in_contact = geo.in_contact && f.normal_force_n > 0.0;

@@ -201,21 +201,61 @@ vehicles::WheelParams ReadWheel(const StrictNode& node) {
   return p;
 }
 
+vehicles::TmeasyDirection ReadTmeasyDirection(const StrictNode& node) {
+  const StrictMap m = node.AsMap({"df0", "fm", "sm", "fs", "ss"});
+  vehicles::TmeasyDirection d;
+  d.df0 = m.Required("df0").AsPositive();
+  d.fm = m.Required("fm").AsPositive();
+  d.sm = m.Required("sm").AsPositive();
+  d.fs = m.Required("fs").AsPositive();
+  const StrictNode ss = m.Required("ss");
+  d.ss = ss.AsPositive();
+  if (!(d.ss > d.sm)) ss.Fail("sliding slip ss must exceed the peak slip sm");
+  return d;
+}
+
 vehicles::TireParams ReadTire(const StrictNode& node) {
-  ReadModel(node,
-            {"model", "friction", "normal_stiffness_npm", "normal_damping_nspm",
-             "bristle_stiffness_npm", "bristle_damping_nspm"},
-            {"rigid"});
-  const StrictMap m = node.AsMap({"model", "friction", "normal_stiffness_npm",
-                                  "normal_damping_nspm", "bristle_stiffness_npm",
-                                  "bristle_damping_nspm"});
   vehicles::TireParams p;
-  p.model = vehicles::TireModel::kRigid;
-  p.friction = m.Required("friction").AsPositive();
-  p.normal_stiffness_npm = m.Required("normal_stiffness_npm").AsPositive();
-  p.normal_damping_nspm = m.Required("normal_damping_nspm").AsNonNegative();
-  p.bristle_stiffness_npm = m.Required("bristle_stiffness_npm").AsPositive();
-  p.bristle_damping_nspm = m.Required("bristle_damping_nspm").AsNonNegative();
+  const std::string model = ReadModel(
+      node,
+      {"model", "friction", "normal_stiffness_npm", "normal_damping_nspm",
+       "bristle_stiffness_npm", "bristle_damping_nspm", "unloaded_radius_m", "width_m",
+       "vertical_stiffness_npm", "vertical_damping_nspm", "rated_load_n", "longitudinal_at_pn",
+       "longitudinal_at_2pn", "lateral_at_pn", "lateral_at_2pn", "mu_0", "rolling_resistance",
+       "relaxation_x_m", "relaxation_y_m", "slip_damping_nspm"},
+      {"rigid", "tmeasy"});
+  if (model == "rigid") {
+    const StrictMap m = node.AsMap({"model", "friction", "normal_stiffness_npm",
+                                    "normal_damping_nspm", "bristle_stiffness_npm",
+                                    "bristle_damping_nspm"});
+    p.model = vehicles::TireModel::kRigid;
+    p.friction = m.Required("friction").AsPositive();
+    p.normal_stiffness_npm = m.Required("normal_stiffness_npm").AsPositive();
+    p.normal_damping_nspm = m.Required("normal_damping_nspm").AsNonNegative();
+    p.bristle_stiffness_npm = m.Required("bristle_stiffness_npm").AsPositive();
+    p.bristle_damping_nspm = m.Required("bristle_damping_nspm").AsNonNegative();
+    return p;
+  }
+  const StrictMap m = node.AsMap(
+      {"model", "unloaded_radius_m", "width_m", "vertical_stiffness_npm", "vertical_damping_nspm",
+       "rated_load_n", "longitudinal_at_pn", "longitudinal_at_2pn", "lateral_at_pn",
+       "lateral_at_2pn", "mu_0", "rolling_resistance", "relaxation_x_m", "relaxation_y_m",
+       "slip_damping_nspm"});
+  p.model = vehicles::TireModel::kTMeasy;
+  p.unloaded_radius_m = m.Required("unloaded_radius_m").AsPositive();
+  p.width_m = m.Required("width_m").AsPositive();
+  p.vertical_stiffness_npm = m.Required("vertical_stiffness_npm").AsPositive();
+  p.vertical_damping_nspm = m.Required("vertical_damping_nspm").AsNonNegative();
+  p.rated_load_n = m.Required("rated_load_n").AsPositive();
+  p.x_pn = ReadTmeasyDirection(m.Required("longitudinal_at_pn"));
+  p.x_2pn = ReadTmeasyDirection(m.Required("longitudinal_at_2pn"));
+  p.y_pn = ReadTmeasyDirection(m.Required("lateral_at_pn"));
+  p.y_2pn = ReadTmeasyDirection(m.Required("lateral_at_2pn"));
+  p.mu_0 = m.Required("mu_0").AsPositive();
+  p.rolling_resistance = m.Required("rolling_resistance").AsNonNegative();
+  p.relaxation_x_m = m.Required("relaxation_x_m").AsPositive();
+  p.relaxation_y_m = m.Required("relaxation_y_m").AsPositive();
+  p.slip_damping_nspm = m.Required("slip_damping_nspm").AsNonNegative();
   return p;
 }
 

@@ -37,6 +37,7 @@ struct BristleState {
 
 struct ContactForce {
   Vec3 force_W = Vec3::Zero();      // total force on the wheel at the contact point
+  Vec3 torque_W = Vec3::Zero();     // extra torque on the wheel (rolling resistance)
   double normal_force_n = 0.0;
 };
 

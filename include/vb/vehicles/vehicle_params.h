@@ -58,18 +58,43 @@ struct WheelParams {
   Vec3 inertia_kgm2 = Vec3::Ones(); // (x, spin y, z)
 };
 
-// Tire model. kRigid: Chrono's rigid tire as a cylinder against the terrain surface; normal
-// penalty spring-damper, elastic bristle for static friction, Coulomb limit
-// mu = min(tire mu, patch mu) (Chrono's NSC composition rule).
-enum class TireModel { kRigid };
+// Tire model.
+//  - kRigid: Chrono's rigid tire: a cylinder (wheel radius_m, width_m) against the terrain
+//    surface; normal penalty spring-damper, elastic bristle for static friction, Coulomb limit
+//    mu = min(tire friction, patch mu) (Chrono's NSC composition rule).
+//  - kTMeasy: handling tire with slip-force curves (tmeasy_tire.h); the patch mu scales the
+//    force maxima by mu / mu_0.
+enum class TireModel { kRigid, kTMeasy };
+
+// One direction (longitudinal x or lateral y) of a TMeasy characteristic at one load.
+struct TmeasyDirection {
+  double df0 = 0.0;   // initial slope, N per unit slip
+  double fm = 0.0;    // peak force, N
+  double sm = 0.0;    // slip at the peak
+  double fs = 0.0;    // sliding force, N
+  double ss = 0.0;    // slip where sliding starts
+};
 
 struct TireParams {
   TireModel model = TireModel::kRigid;
+  // kRigid
   double friction = 0.9;                 // tire material mu
   double normal_stiffness_npm = 0.0;
   double normal_damping_nspm = 0.0;
   double bristle_stiffness_npm = 0.0;    // tangential stiffness of the stick state
   double bristle_damping_nspm = 0.0;
+  // kTMeasy
+  double unloaded_radius_m = 0.0;
+  double width_m = 0.0;
+  double vertical_stiffness_npm = 0.0;
+  double vertical_damping_nspm = 0.0;
+  double rated_load_n = 0.0;             // pn
+  TmeasyDirection x_pn, x_2pn, y_pn, y_2pn;
+  double mu_0 = 0.8;                     // road friction the curves were measured on
+  double rolling_resistance = 0.0;       // coefficient
+  double relaxation_x_m = 0.0;           // sigma: dF0 / sigma is the stiffness at rest
+  double relaxation_y_m = 0.0;
+  double slip_damping_nspm = 0.0;        // damping of the relaxation deflection
 };
 
 struct AxleParams {
