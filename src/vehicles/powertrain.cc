@@ -48,7 +48,10 @@ void UpdateGear(const TransmissionParams& tr, double ground_engine_speed_radps, 
   if (s->time_in_gear_s < tr.min_time_in_gear_s) return;
   const int n = static_cast<int>(tr.forward_ratios.size());
   const double rpm = s->engine_speed_radps / kRpmToRadps;
-  const double up_rpm = std::min(s->engine_speed_radps, ground_engine_speed_radps) / kRpmToRadps;
+  const double up_rpm =
+      (tr.upshift_on_ground_speed ? std::min(s->engine_speed_radps, ground_engine_speed_radps)
+                                  : s->engine_speed_radps) /
+      kRpmToRadps;
   if (up_rpm > tr.upshift_rpm[s->gear - 1] && s->gear < n) {
     ++s->gear;
     s->time_in_gear_s = 0.0;

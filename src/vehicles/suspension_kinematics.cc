@@ -41,34 +41,26 @@ Vec6 Residual(const DoubleWishboneHardpoints& hp, double travel_m, double rack_m
   return f;
 }
 
-}  // namespace
 
-UprightSolution SolveDoubleWishbone(const DoubleWishboneHardpoints& hp, double travel_m,
-                                    double rack_m) {
-  UprightSolution out;
-  // Continuation in a few sub-steps keeps Newton on the physical branch for large travels.
-  Vec6 x = Vec6::Zero();
-  constexpr int kSubSteps = 8;
-  for (int k = 1; k <= kSubSteps; ++k) {
-    const double tr = travel_m * k / kSubSteps, ra = rack_m * k / kSubSteps;
-    bool converged = false;
-    for (int it = 0; it < 30; ++it) {
-      const Vec6 f = Residual(hp, tr, ra, x);
-      if (f.cwiseAbs().maxCoeff() < 1e-12) {
-        converged = true;
-        break;
-      }
-      Mat6 J;
-      constexpr double h = 1e-7;
-      for (int j = 0; j < 6; ++j) {
-        Vec6 xp = x;
-        xp(j) += h;
-        J.col(j) = (Residual(hp, tr, ra, xp) - f) / h;
-      }
-      x -= J.fullPivLu().solve(f);
+// Newton from the pose x (updated in place); false if it does not converge.
+bool NewtonSolve(const DoubleWishboneHardpoints& hp, double travel_m, double rack_m, Vec6* x) {
+  for (int it = 0; it < 30; ++it) {
+    const Vec6 f = Residual(hp, travel_m, rack_m, *x);
+    if (f.cwiseAbs().maxCoeff() < 1e-12) return true;
+    Mat6 J;
+    constexpr double h = 1e-7;
+    for (int j = 0; j < 6; ++j) {
+      Vec6 xp = *x;
+      xp(j) += h;
+      J.col(j) = (Residual(hp, travel_m, rack_m, xp) - f) / h;
     }
-    if (!converged && Residual(hp, tr, ra, x).cwiseAbs().maxCoeff() > 1e-9) return out;
+    *x -= J.fullPivLu().solve(f);
   }
+  return Residual(hp, travel_m, rack_m, *x).cwiseAbs().maxCoeff() < 1e-9;
+}
+
+UprightSolution Evaluate(const DoubleWishboneHardpoints& hp, const Vec6& x) {
+  UprightSolution out;
   out.ok = true;
   out.spindle = hp.spindle + x.head<3>();
   out.shock_length_m = (Moved(hp.shock_u, hp.spindle, x) - hp.shock_c).norm();
@@ -77,6 +69,52 @@ UprightSolution SolveDoubleWishbone(const DoubleWishboneHardpoints& hp, double t
   out.camber_rad = std::asin(std::clamp(axis.z(), -1.0, 1.0));
   return out;
 }
+
+}  // namespace
+
+UprightSolution SolveDoubleWishbone(const DoubleWishboneHardpoints& hp, double travel_m,
+                                    double rack_m) {
+  // Continuation in a few sub-steps keeps Newton on the physical branch for large travels.
+  Vec6 x = Vec6::Zero();
+  constexpr int kSubSteps = 8;
+  for (int k = 1; k <= kSubSteps; ++k) {
+    if (!NewtonSolve(hp, travel_m * k / kSubSteps, rack_m * k / kSubSteps, &x)) {
+      return UprightSolution();
+    }
+  }
+  return Evaluate(hp, x);
+}
+
+namespace {
+
+// Samples the linkage at u = x0 + i dx (i < n) where u is the wheel travel (rack = false) or the
+// rack travel (rack = true), by continuation outwards from the design pose (u = 0 in range): each
+// Newton solve starts from its neighbour's pose. Returns the solutions or throws.
+std::vector<UprightSolution> Sample(const DoubleWishboneHardpoints& hp, double x0, double dx,
+                                    int n, bool rack) {
+  std::vector<UprightSolution> out(n);
+  const int i0 = std::clamp(static_cast<int>(std::lround(-x0 / dx)), 0, n - 1);
+  for (int dir : {1, -1}) {
+    Vec6 x = Vec6::Zero();
+    double u_prev = 0.0;
+    for (int i = i0; i >= 0 && i < n; i += dir) {
+      const double u = x0 + i * dx;
+      // sub-steps of at most 1 cm from the previous sample
+      const int sub = std::max(1, static_cast<int>(std::ceil(std::abs(u - u_prev) / 0.01)));
+      for (int k = 1; k <= sub; ++k) {
+        const double uk = u_prev + (u - u_prev) * k / sub;
+        if (!NewtonSolve(hp, rack ? 0.0 : uk, rack ? uk : 0.0, &x)) {
+          throw std::runtime_error("double wishbone: the linkage does not assemble");
+        }
+      }
+      u_prev = u;
+      out[i] = Evaluate(hp, x);
+    }
+  }
+  return out;
+}
+
+}  // namespace
 
 double Table1D::operator()(double x) const {
   const double u = (x - x0) / dx;
@@ -98,11 +136,7 @@ Table1D ShockLengthTable(const DoubleWishboneHardpoints& hp, double lo_m, double
   Table1D t;
   t.x0 = lo_m;
   t.dx = (hi_m - lo_m) / (n - 1);
-  for (int i = 0; i < n; ++i) {
-    const UprightSolution s = SolveDoubleWishbone(hp, lo_m + i * t.dx, 0.0);
-    if (!s.ok) throw std::runtime_error("double wishbone: no assembly at this wheel travel");
-    t.y.push_back(s.shock_length_m);
-  }
+  for (const UprightSolution& s : Sample(hp, t.x0, t.dx, n, false)) t.y.push_back(s.shock_length_m);
   return t;
 }
 
@@ -110,11 +144,7 @@ Table1D SteerAngleTable(const DoubleWishboneHardpoints& hp, double rack_max_m, i
   Table1D t;
   t.x0 = -rack_max_m;
   t.dx = 2.0 * rack_max_m / (n - 1);
-  for (int i = 0; i < n; ++i) {
-    const UprightSolution s = SolveDoubleWishbone(hp, 0.0, t.x0 + i * t.dx);
-    if (!s.ok) throw std::runtime_error("double wishbone: no assembly at this rack travel");
-    t.y.push_back(s.steer_angle_rad);
-  }
+  for (const UprightSolution& s : Sample(hp, t.x0, t.dx, n, true)) t.y.push_back(s.steer_angle_rad);
   return t;
 }
 

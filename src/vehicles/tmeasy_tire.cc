@@ -60,8 +60,12 @@ ContactForce ComputeTmeasyForce(const TireParams& tire, const ContactGeometry& c
   const Vec3& n = contact.normal_W;
 
   // vertical: spring-damper on the deflection of the unloaded radius, compressive only
+  // (and the rim as a stiff spring once the tire has bottomed out)
   const double v_n = v_point_W.dot(n);
-  const double fz = std::max(0.0, tire.vertical_stiffness_npm * contact.penetration_m -
+  const double bottomed_m =
+      std::max(0.0, contact.penetration_m - (tire.unloaded_radius_m - tire.rim_radius_m));
+  const double fz = std::max(0.0, tire.vertical_stiffness_npm * contact.penetration_m +
+                                      tire.rim_stiffness_npm * bottomed_m -
                                       tire.vertical_damping_nspm * v_n);
   out.normal_force_n = fz;
 

@@ -91,6 +91,7 @@ transmission:
   upshift_rpm: [2500.0, 2500.0, 4000.0]
   downshift_rpm: [0.0, 1200.0, 1200.0]
   min_time_in_gear_s: 0.5
+  upshift_on_ground_speed: true
 driveline:
   conical_ratio: 0.2
   lock_axle_differentials: false
@@ -174,6 +175,7 @@ TEST_F(VehicleIoTest, LoadsEveryField) {
   EXPECT_EQ(v.axles[0].suspension.stop_force_n, (std::vector<double>{0.0, 1000.0, 50000.0}));
   EXPECT_EQ(v.tire.model, vehicles::TireModel::kRigid);
   EXPECT_EQ(v.transmission.min_time_in_gear_s, 0.5);
+  EXPECT_TRUE(v.transmission.upshift_on_ground_speed);
   EXPECT_EQ(v.wheel.radius_m, 0.47);
   EXPECT_EQ(v.wheel.width_m, 0.32);
   EXPECT_EQ(v.wheel.mass_kg, 60.0);

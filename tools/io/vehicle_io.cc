@@ -220,9 +220,10 @@ vehicles::TireParams ReadTire(const StrictNode& node) {
       node,
       {"model", "friction", "normal_stiffness_npm", "normal_damping_nspm",
        "bristle_stiffness_npm", "bristle_damping_nspm", "unloaded_radius_m", "width_m",
-       "vertical_stiffness_npm", "vertical_damping_nspm", "rated_load_n", "longitudinal_at_pn",
-       "longitudinal_at_2pn", "lateral_at_pn", "lateral_at_2pn", "mu_0", "rolling_resistance",
-       "relaxation_x_m", "relaxation_y_m", "slip_damping_nspm"},
+       "vertical_stiffness_npm", "vertical_damping_nspm", "rim_radius_m", "rim_stiffness_npm",
+       "rated_load_n", "longitudinal_at_pn", "longitudinal_at_2pn", "lateral_at_pn",
+       "lateral_at_2pn", "mu_0", "rolling_resistance", "relaxation_x_m", "relaxation_y_m",
+       "slip_damping_nspm"},
       {"rigid", "tmeasy"});
   if (model == "rigid") {
     const StrictMap m = node.AsMap({"model", "friction", "normal_stiffness_npm",
@@ -238,7 +239,7 @@ vehicles::TireParams ReadTire(const StrictNode& node) {
   }
   const StrictMap m = node.AsMap(
       {"model", "unloaded_radius_m", "width_m", "vertical_stiffness_npm", "vertical_damping_nspm",
-       "rated_load_n", "longitudinal_at_pn", "longitudinal_at_2pn", "lateral_at_pn",
+       "rim_radius_m", "rim_stiffness_npm", "rated_load_n", "longitudinal_at_pn", "longitudinal_at_2pn", "lateral_at_pn",
        "lateral_at_2pn", "mu_0", "rolling_resistance", "relaxation_x_m", "relaxation_y_m",
        "slip_damping_nspm"});
   p.model = vehicles::TireModel::kTMeasy;
@@ -246,6 +247,10 @@ vehicles::TireParams ReadTire(const StrictNode& node) {
   p.width_m = m.Required("width_m").AsPositive();
   p.vertical_stiffness_npm = m.Required("vertical_stiffness_npm").AsPositive();
   p.vertical_damping_nspm = m.Required("vertical_damping_nspm").AsNonNegative();
+  const StrictNode rim = m.Required("rim_radius_m");
+  p.rim_radius_m = rim.AsPositive();
+  if (!(p.rim_radius_m < p.unloaded_radius_m)) rim.Fail("must be below unloaded_radius_m");
+  p.rim_stiffness_npm = m.Required("rim_stiffness_npm").AsNonNegative();
   p.rated_load_n = m.Required("rated_load_n").AsPositive();
   p.x_pn = ReadTmeasyDirection(m.Required("longitudinal_at_pn"));
   p.x_2pn = ReadTmeasyDirection(m.Required("longitudinal_at_2pn"));
@@ -294,7 +299,8 @@ std::vector<double> ReadShiftList(const StrictNode& node, size_t gears) {
 
 vehicles::TransmissionParams ReadTransmission(const StrictNode& node) {
   const StrictMap m = node.AsMap({"forward_ratios", "reverse_ratio", "upshift_rpm",
-                                  "downshift_rpm", "min_time_in_gear_s"});
+                                  "downshift_rpm", "min_time_in_gear_s",
+                                  "upshift_on_ground_speed"});
   vehicles::TransmissionParams p;
   p.forward_ratios = ReadPositiveList(m.Required("forward_ratios"), 1);
   // A magnitude: the reverse gear itself flips the direction.
@@ -302,6 +308,7 @@ vehicles::TransmissionParams ReadTransmission(const StrictNode& node) {
   p.upshift_rpm = ReadShiftList(m.Required("upshift_rpm"), p.forward_ratios.size());
   p.downshift_rpm = ReadShiftList(m.Required("downshift_rpm"), p.forward_ratios.size());
   p.min_time_in_gear_s = m.Required("min_time_in_gear_s").AsNonNegative();
+  p.upshift_on_ground_speed = m.Required("upshift_on_ground_speed").AsBool();
   return p;
 }
 

@@ -23,10 +23,11 @@ struct PowertrainState {
 
 // Shift logic of the automatic transmission. Chrono's AUTOMATIC_SIMPLE_MAP shifts on the engine
 // speed alone: up above upshift_rpm[gear-1], down below downshift_rpm[gear-1]. vb keeps those
-// thresholds but (a) judges upshifts on min(engine speed, engine speed implied by the vehicle's
-// ground speed), so wheels spinning against an obstacle or in a traction-limited climb do not
-// climb the gears and lose the torque they need, and (b) holds a gear for min_time_in_gear_s
-// after a shift. One gear per call. ground_engine_speed_radps: ground speed / (r * ratio).
+// thresholds, holds a gear for min_time_in_gear_s after a shift, and, if
+// upshift_on_ground_speed, judges upshifts on min(engine speed, engine speed implied by the
+// vehicle's ground speed), so wheels spinning against an obstacle do not climb the gears (off for
+// the HMMWV: on env000 it lowered PID success, see docs/validation.md). One gear per call.
+// ground_engine_speed_radps: ground speed / (r * ratio).
 void UpdateGear(const TransmissionParams& transmission, double ground_engine_speed_radps,
                 double dt, PowertrainState* state);
 

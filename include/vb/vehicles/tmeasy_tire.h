@@ -1,6 +1,7 @@
 // TMeasy-style handling tire (after Hirschberg, Rill, Weinfurter; the model Chrono's ChTMeasyTire
 // implements), written for vb's 5 ms step:
-//  - vertical: linear spring-damper on the deflection of the unloaded radius;
+//  - vertical: linear spring-damper on the deflection of the unloaded radius, and a stiff rim
+//    contact once the tire has bottomed out (deflection > unloaded radius - rim radius);
 //  - longitudinal/lateral: combined-slip generalised force curve F(s) (initial slope dF0, peak FM
 //    at sM, sliding FS from sS on), each characteristic given at the rated load pn and at 2 pn
 //    and interpolated in load (forces and stiffnesses quadratically through (0, 0), slips

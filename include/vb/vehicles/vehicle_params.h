@@ -88,6 +88,8 @@ struct TireParams {
   double width_m = 0.0;
   double vertical_stiffness_npm = 0.0;
   double vertical_damping_nspm = 0.0;
+  double rim_radius_m = 0.0;             // the tire bottoms out on the rim beyond r - rim radius
+  double rim_stiffness_npm = 0.0;        // contact stiffness of the rim (like the rigid tire)
   double rated_load_n = 0.0;             // pn
   TmeasyDirection x_pn, x_2pn, y_pn, y_2pn;
   double mu_0 = 0.8;                     // road friction the curves were measured on
@@ -139,10 +141,11 @@ struct TransmissionParams {
   double reverse_ratio = 0.0;           // magnitude (> 0) of the reverse gear ratio
   std::vector<double> upshift_rpm;      // per gear
   std::vector<double> downshift_rpm;    // per gear
-  // Shift logic (vb addition, see powertrain.h): upshifts are judged on the engine speed the
-  // vehicle's ground speed implies (so wheels spinning against an obstacle do not upshift), and
-  // a gear is held at least this long after a shift (hysteresis against hunting).
+  // Shift logic additions (see powertrain.h): a gear is held at least min_time_in_gear_s after a
+  // shift (hysteresis against hunting); optionally upshifts are judged on the engine speed the
+  // vehicle's ground speed implies, so wheels spinning against an obstacle do not upshift.
   double min_time_in_gear_s = 0.0;
+  bool upshift_on_ground_speed = false;
 };
 
 struct DrivelineParams {
