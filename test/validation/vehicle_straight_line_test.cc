@@ -5,9 +5,10 @@
 //  - Acceleration: speed at t = 2, 4, 6, 10 s vs a point-mass model of the same engine map,
 //    gear ratios, shift rule and tire radius (m_eff = m + 4 I_wheel / r^2, drive force
 //    T(w) / (ratio r), traction-limited by 2 mu N_front + the central clutch while the front
-//    wheels would spin). Tolerance 5 %: in the first seconds the front wheels spin up while the
-//    open differentials still hand the rear wheels the same (larger) torque, which the
-//    quasi-static traction limit does not credit (sim +3.8 % at 2 s, +0.0 % at 10 s).
+//    wheels would spin). Tolerance 3 % from t = 4 s on; 8 % at t = 2 s: in the first seconds the
+//    front wheels spin up while the open differentials still hand the rear wheels the same
+//    (larger) torque, and the spinning wheels shift up earlier than the no-slip model, which the
+//    quasi-static traction limit does not credit (sim +5 % at 2 s, +2 % at 4 s, 0 % at 10 s).
 //  - Braking from 20 m/s with full brakes (4000 N m per wheel > mu N r, so the wheels lock):
 //    stopping distance v^2 / (2 mu g) for mu 0.9 and 0.5; tolerance 3 %.
 #include <cmath>
@@ -93,7 +94,7 @@ TEST(VehicleStraightLine, AccelerationMatchesPowertrainModel) {
     const double model = PointMassSpeed(p, 0.9, 0.612, t_check);
     std::printf("t %.0f s: sim %.2f m/s, point-mass powertrain model %.2f m/s (%+.1f %%)\n",
                 t_check, v, model, 100.0 * (v / model - 1.0));
-    EXPECT_NEAR(v, model, 0.05 * model);
+    EXPECT_NEAR(v, model, (t_check < 3.0 ? 0.08 : 0.03) * model);
   }
 }
 
