@@ -63,6 +63,28 @@ TEST(Tmeasy, CurveShapeAndLoadInterpolation) {
   EXPECT_LT(GeneralisedForce(at_pn, 0.5 * (at_pn.sm + at_pn.ss)), at_pn.fm);
 }
 
+// data/vehicles/hmmwv_tmeasy.yaml must stay the HMMWV of hmmwv.yaml with another tire.
+TEST(VehicleData, TmeasyVariantMatchesHmmwvExceptTire) {
+  const VehicleParams a = test::Hmmwv(), b = test::HmmwvTmeasy();
+  EXPECT_EQ(a.chassis.mass_kg, b.chassis.mass_kg);
+  EXPECT_EQ(a.chassis.com_B, b.chassis.com_B);
+  ASSERT_EQ(a.axles.size(), b.axles.size());
+  for (size_t i = 0; i < a.axles.size(); ++i) {
+    EXPECT_EQ(a.axles[i].x_m, b.axles[i].x_m);
+    EXPECT_EQ(a.axles[i].suspension.spring_stiffness_npm, b.axles[i].suspension.spring_stiffness_npm);
+    EXPECT_EQ(a.axles[i].suspension.bump_travel_m, b.axles[i].suspension.bump_travel_m);
+    EXPECT_EQ(a.axles[i].brake_torque_nm, b.axles[i].brake_torque_nm);
+  }
+  EXPECT_EQ(a.steering.max_pinion_angle_rad, b.steering.max_pinion_angle_rad);
+  EXPECT_EQ(a.wheel.mass_kg, b.wheel.mass_kg);
+  EXPECT_EQ(a.engine.map.size(), b.engine.map.size());
+  EXPECT_EQ(a.transmission.forward_ratios, b.transmission.forward_ratios);
+  EXPECT_EQ(a.transmission.min_time_in_gear_s, b.transmission.min_time_in_gear_s);
+  EXPECT_EQ(a.driveline.lock_torque_limit_nm, b.driveline.lock_torque_limit_nm);
+  EXPECT_EQ(a.tire.model, TireModel::kRigid);
+  EXPECT_EQ(b.tire.model, TireModel::kTMeasy);
+}
+
 TEST(ShiftLogic, HoldTimeAndGroundSpeedUpshift) {
   TransmissionParams tr;
   tr.forward_ratios = {0.2, 0.4};
