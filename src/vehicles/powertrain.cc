@@ -42,19 +42,29 @@ double EngineTorque(const EngineParams& engine, double speed_radps, double throt
          Interpolate(engine.map, w, true) * t;
 }
 
-void UpdateGear(const TransmissionParams& tr, PowertrainState* s) {
+void UpdateGear(const TransmissionParams& tr, double ground_engine_speed_radps, double dt,
+                PowertrainState* s) {
+  s->time_in_gear_s += dt;
+  if (s->time_in_gear_s < tr.min_time_in_gear_s) return;
   const int n = static_cast<int>(tr.forward_ratios.size());
   const double rpm = s->engine_speed_radps / kRpmToRadps;
-  if (rpm > tr.upshift_rpm[s->gear - 1] && s->gear < n) {
+  const double up_rpm =
+      (tr.upshift_on_ground_speed ? std::min(s->engine_speed_radps, ground_engine_speed_radps)
+                                  : s->engine_speed_radps) /
+      kRpmToRadps;
+  if (up_rpm > tr.upshift_rpm[s->gear - 1] && s->gear < n) {
     ++s->gear;
+    s->time_in_gear_s = 0.0;
   } else if (rpm < tr.downshift_rpm[s->gear - 1] && s->gear > 1) {
     --s->gear;
+    s->time_in_gear_s = 0.0;
   }
 }
 
 void ComputeWheelTorques(const VehicleParams& p, double throttle,
                          const std::vector<double>& wheel_speeds_radps,
-                         const std::vector<bool>& driven, PowertrainState* s,
+                         const std::vector<bool>& driven, double ground_speed_mps, double dt,
+                         PowertrainState* s,
                          std::vector<double>* torques) {
   const size_t n = wheel_speeds_radps.size();
   torques->assign(n, 0.0);
@@ -71,7 +81,7 @@ void ComputeWheelTorques(const VehicleParams& p, double throttle,
   // Kinematic transmission: engine speed follows the driveshaft (no torque converter).
   const double ratio = p.transmission.forward_ratios[s->gear - 1] * p.driveline.conical_ratio;
   s->engine_speed_radps = std::max(0.0, mean_speed / ratio);
-  UpdateGear(p.transmission, s);
+  UpdateGear(p.transmission, std::max(0.0, ground_speed_mps / p.wheel.radius_m / ratio), dt, s);
   const double ratio_after = p.transmission.forward_ratios[s->gear - 1] * p.driveline.conical_ratio;
   s->engine_speed_radps = std::max(0.0, mean_speed / ratio_after);
   s->engine_torque_nm = EngineTorque(p.engine, s->engine_speed_radps, throttle);
@@ -108,7 +118,10 @@ void ComputeWheelTorques(const VehicleParams& p, double throttle,
       }
     }
     if (nf > 0 && nr > 0) {
-      const double t = ClutchTorque(front / nf - rear / nr, limit);
+      // The central clutch sits between the front and rear driveshafts, before the conical gears:
+      // shaft speed = wheel speed / conical ratio, wheel-side torque = shaft torque / ratio.
+      const double k = p.driveline.conical_ratio;
+      const double t = ClutchTorque((front / nf - rear / nr) / k, limit) / k;
       for (size_t i = 0; i < n; ++i) {
         if (!driven[i]) continue;
         (*torques)[i] += (i < half ? -t / nf : t / nr);

@@ -6,7 +6,7 @@
 namespace vb::vehicles {
 
 ContactGeometry FindWheelContact(const terrain::Terrain& terrain, const Vec3& c_W,
-                                 const Vec3& axis_W, double radius_m) {
+                                 const Vec3& axis_W, double radius_m, double width_m) {
   ContactGeometry out;
 
   // direction from the centre to the lowest point of the disc: the terrain's downward normal
@@ -16,18 +16,38 @@ ContactGeometry FindWheelContact(const terrain::Terrain& terrain, const Vec3& c_
   const double len = down.norm();
   if (len < 1e-6) return out;  // wheel lying flat on the ground: no rolling contact
   down /= len;
-  const Vec3 p_W = c_W + radius_m * down;
 
-  // penetration below the terrain plane at that point, measured along its normal
+  // The cylinder's lowest generatrix: its two ends (the tread edges) and their penetration below
+  // the local terrain plane, measured along the normal there. Along the width the penetration is
+  // linear; the contact is the resultant of that line load: mean penetration over the width and
+  // the point at its centroid (tread centre when level, towards the lower edge when tilted).
+  const double half_w = 0.5 * width_m;
+  const Vec3 p_mid = c_W + radius_m * down;
+  const Vec3 p_minus = p_mid - half_w * axis_W, p_plus = p_mid + half_w * axis_W;
+  const terrain::SurfacePoint s_minus = terrain.Query(p_minus.x(), p_minus.y());
+  const terrain::SurfacePoint s_plus = terrain.Query(p_plus.x(), p_plus.y());
+  const double d_minus = (s_minus.height_m - p_minus.z()) * s_minus.normal_W.z();
+  const double d_plus = (s_plus.height_m - p_plus.z()) * s_plus.normal_W.z();
+  if (d_minus <= 0.0 && d_plus <= 0.0) return out;
+
+  double mean = 0.0, u = 0.0;  // mean penetration over the width; centroid offset along axis
+  if (d_minus > 0.0 && d_plus > 0.0) {
+    mean = 0.5 * (d_minus + d_plus);
+    u = width_m / 6.0 * (d_plus - d_minus) / (d_plus + d_minus);  // trapezoid centroid
+  } else {
+    const double d = std::max(d_minus, d_plus);  // one edge in: a triangle of length l
+    const double l = width_m * d / (d - std::min(d_minus, d_plus));
+    mean = 0.5 * d * l / width_m;
+    u = (d_plus > 0.0 ? 1.0 : -1.0) * (half_w - l / 3.0);
+  }
+  const Vec3 p_W = p_mid + u * axis_W;
   const terrain::SurfacePoint s = terrain.Query(p_W.x(), p_W.y());
-  const double depth = (s.height_m - p_W.z()) * s.normal_W.z();
-  if (depth <= 0.0) return out;
 
   out.in_contact = true;
   out.point_W = p_W;
   out.normal_W = s.normal_W;
   // a wheel cannot sink more than its radius into rigid ground; beyond that the state is broken
-  out.penetration_m = std::min(depth, radius_m);
+  out.penetration_m = std::min(mean, radius_m);
   out.surface = s.surface;
   out.patch_friction = s.friction;
   return out;

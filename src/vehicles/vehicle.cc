@@ -8,7 +8,9 @@
 #include <cmath>
 
 #include "vb/vehicles/powertrain.h"
+#include "vb/vehicles/suspension_kinematics.h"
 #include "vb/vehicles/tire_contact.h"
+#include "vb/vehicles/tmeasy_tire.h"
 
 namespace vb::vehicles {
 
@@ -20,12 +22,17 @@ struct Vehicle::Internals {
     double side = 1.0;      // +1 left, -1 right
     const AxleParams* axle = nullptr;
     BristleState bristle;
+    TmeasyState tmeasy;
+    Table1D shock_length;   // kDoubleWishbone: shock length vs wheel travel (m)
   };
   std::vector<Corner> corners;
   PowertrainState powertrain;
   double corner_sprung_mass_kg = 0.0;   // chassis mass per wheel
   Vec3 com_B = Vec3::Zero();
   double steer_wheelbase_m = 0.0;  // steered axle to the turning-centre line (unsteered axles)
+  Table1D left_steer_angle;        // kRackPinion: left road-wheel angle vs rack travel
+  double rack_sign = 1.0;          // rack direction that turns the wheels left
+  double rack_max_m = 0.0;
   // Per-step scratch (allocated once).
   std::vector<double> wheel_speeds;
   std::vector<bool> driven;
@@ -40,12 +47,12 @@ namespace {
 // does); this form is stable for any c and tends to the plain damper as dt -> 0.
 double ImplicitDamping(double c, double dt, double mass_kg) { return c / (1.0 + c * dt / mass_kg); }
 
-// Road-wheel angles (left, right) for a steering input in [-1, 1]. Ackermann: the inner wheel
-// gets the full angle, the outer one the angle that shares its turning centre.
-void SteeringAngles(const SteeringParams& s, double input, double wheelbase_m, double track_m,
-                    double* left, double* right) {
+// Ideal Ackermann road-wheel angles (left, right) for a steering input in [-1, 1]: the inner
+// wheel gets the full angle, the outer one the angle that shares its turning centre.
+void AckermannAngles(const SteeringParams& s, double input, double wheelbase_m, double track_m,
+                     double* left, double* right) {
   const double inner = std::clamp(input, -1.0, 1.0) * s.max_angle_rad;
-  if (!s.ackermann || std::abs(inner) < 1e-9 || wheelbase_m <= 0.0) {
+  if (std::abs(inner) < 1e-9 || wheelbase_m <= 0.0) {
     *left = *right = inner;
     return;
   }
@@ -60,12 +67,39 @@ void SteeringAngles(const SteeringParams& s, double input, double wheelbase_m, d
   }
 }
 
+// Progressive stop force (N, >= 0) for a deflection beyond the stop (m); the last segment's
+// slope continues beyond the table.
+double StopForce(const SuspensionParams& su, double deflection_m) {
+  if (deflection_m <= 0.0) return 0.0;
+  const std::vector<double>& d = su.stop_deflection_m;
+  const std::vector<double>& f = su.stop_force_n;
+  size_t i = 1;
+  while (i + 1 < d.size() && deflection_m > d[i]) ++i;
+  return f[i - 1] + (deflection_m - d[i - 1]) * (f[i] - f[i - 1]) / (d[i] - d[i - 1]);
+}
+
+// Hard end of travel (Bullet joint limit) beyond the stop table, as a last resort only.
+constexpr double kHardLimitBeyondStops_m = 0.03;
+
 }  // namespace
 
 Vehicle::Vehicle(const VehicleParams& params, const terrain::Terrain& terrain, const Pose& pose_W,
                  engine::PhysicsWorld* world)
     : params_(params), terrain_(terrain), world_(world), in_(std::make_unique<Internals>()) {
-  const ChassisParams& ch = params_.chassis;
+  // chassis plus the steering link (rides with the chassis): one rigid base body
+  ChassisParams ch = params_.chassis;
+  if (params_.steering.link_mass_kg > 0.0) {
+    const double m1 = ch.mass_kg, m2 = params_.steering.link_mass_kg, m = m1 + m2;
+    const Vec3 p2 = params_.steering.link_position_B;
+    const Vec3 com = (m1 * ch.com_B + m2 * p2) / m;
+    auto parallel_axis = [](double mass, const Vec3& d) {  // diagonal terms only
+      return Vec3(mass * (d.y() * d.y() + d.z() * d.z()), mass * (d.x() * d.x() + d.z() * d.z()),
+                  mass * (d.x() * d.x() + d.y() * d.y()));
+    };
+    ch.inertia_kgm2 += Vec3::Ones() + parallel_axis(m1, ch.com_B - com) + parallel_axis(m2, p2 - com);
+    ch.mass_kg = m;
+    ch.com_B = com;
+  }
   in_->com_B = ch.com_B;
 
   // chassis: base body at the COM, collision box offset from it
@@ -102,8 +136,17 @@ Vehicle::Vehicle(const VehicleParams& params, const terrain::Terrain& terrain, c
       carrier.parent_com_to_joint_P = center_B - ch.com_B;
       carrier.mass_kg = axle.steered ? su.carrier_mass_kg / 2.0 : su.carrier_mass_kg;
       carrier.inertia_kgm2 = su.carrier_inertia_kgm2;
-      carrier.limit_lower = -su.rebound_travel_m;
-      carrier.limit_upper = su.bump_travel_m;
+      carrier.limit_lower = -su.rebound_travel_m - su.stop_deflection_m.back() -
+                            kHardLimitBeyondStops_m;
+      carrier.limit_upper = su.bump_travel_m + su.stop_deflection_m.back() +
+                            kHardLimitBeyondStops_m;
+      if (su.model == SuspensionModel::kDoubleWishbone) {
+        // sampled every ~5 mm over the whole possible travel
+        const int samples =
+            2 + static_cast<int>((carrier.limit_upper - carrier.limit_lower) / 0.005);
+        corner.shock_length =
+            ShockLengthTable(su.hardpoints, carrier.limit_lower, carrier.limit_upper, samples);
+      }
       corner.carrier_link = static_cast<int>(links.size());
       links.push_back(carrier);
       int parent = corner.carrier_link;
@@ -136,6 +179,16 @@ Vehicle::Vehicle(const VehicleParams& params, const terrain::Terrain& terrain, c
   }
   if (n_steered > 0 && n_fixed > 0)
     in_->steer_wheelbase_m = std::abs(steered_x_sum / n_steered - fixed_x_sum / n_fixed);
+  if (params_.steering.model == SteeringModel::kRackPinion) {
+    // All steered axles share the rack; the first steered axle's tie-rod geometry is used.
+    for (const AxleParams& axle : params_.axles) {
+      if (!axle.steered) continue;
+      in_->rack_max_m = params_.steering.max_pinion_angle_rad * params_.steering.pinion_radius_m;
+      in_->left_steer_angle = SteerAngleTable(axle.suspension.hardpoints, in_->rack_max_m, 41);
+      in_->rack_sign = in_->left_steer_angle(in_->rack_max_m) > 0.0 ? 1.0 : -1.0;
+      break;
+    }
+  }
 
   body_ = world_->AddMultiBody(base, links, /*contact_friction=*/0.8);
   in_->corner_sprung_mass_kg = ch.mass_kg / static_cast<double>(in_->corners.size());
@@ -160,16 +213,27 @@ void Vehicle::SetInputs(const DriverInputs& inputs) {
 void Vehicle::Synchronize(double dt) {
   const size_t n = in_->corners.size();
 
-  // steering: implicit position servos on the knuckles
-  const double track = params_.axles.empty() ? 0.0 : 2.0 * params_.axles.front().half_track_m;
+  // steering: road-wheel angles, then implicit position servos on the knuckles
   double left = 0.0, right = 0.0;
-  SteeringAngles(params_.steering, inputs_.steering, in_->steer_wheelbase_m, track, &left, &right);
+  if (params_.steering.model == SteeringModel::kRackPinion) {
+    // rack travel from the pinion; the right wheel mirrors the left one (y -> -y)
+    const double rack = in_->rack_sign * inputs_.steering * in_->rack_max_m;
+    left = in_->left_steer_angle(rack);
+    right = -in_->left_steer_angle(-rack);
+  } else {
+    const double track = params_.axles.empty() ? 0.0 : 2.0 * params_.axles.front().half_track_m;
+    AckermannAngles(params_.steering, inputs_.steering, in_->steer_wheelbase_m, track, &left,
+                    &right);
+  }
 
   // powertrain: wheel drive torques from the engine map through gears and differentials
   for (size_t i = 0; i < n; ++i)
     in_->wheel_speeds[i] = world_->JointVelocity(body_, in_->corners[i].wheel_link);
-  ComputeWheelTorques(params_, inputs_.throttle, in_->wheel_speeds, in_->driven, &in_->powertrain,
-                      &in_->wheel_torques);
+  const Pose chassis = world_->BasePose(body_);
+  const double ground_speed_mps =
+      world_->BaseLinearVelocity(body_).dot(chassis.rotation * Vec3::UnitX());
+  ComputeWheelTorques(params_, inputs_.throttle, in_->wheel_speeds, in_->driven,
+                      ground_speed_mps, dt, &in_->powertrain, &in_->wheel_torques);
 
   for (size_t i = 0; i < n; ++i) {
     Internals::Corner& c = in_->corners[i];
@@ -179,16 +243,28 @@ void Vehicle::Synchronize(double dt) {
     if (c.knuckle_link >= 0)
       world_->SetJointPositionMotor(body_, c.knuckle_link, c.side > 0 ? left : right, 1e5);
 
-    // suspension strut: preloaded linear spring-damper pushing the wheel down; the damper acts on
-    // the reduced mass of the wheel carrier against its share of the chassis
+    // suspension: spring-damper on the slider (strut) or along the shock (double wishbone), the
+    // damper implicit on the reduced mass of the wheel carrier against its share of the chassis
     const double unsprung_kg = su.carrier_mass_kg + params_.wheel.mass_kg;
     const double strut_mass_kg =
         unsprung_kg * in_->corner_sprung_mass_kg / (unsprung_kg + in_->corner_sprung_mass_kg);
     const double s = world_->JointPosition(body_, c.carrier_link);
     const double s_dot = world_->JointVelocity(body_, c.carrier_link);
-    const double c_strut = ImplicitDamping(su.damping_nspm, dt, strut_mass_kg);
-    world_->AddJointForce(body_, c.carrier_link,
-                          -(su.preload_n + su.stiffness_npm * s + c_strut * s_dot));
+    double force_up = 0.0;  // generalised force on the slider, + = compression direction
+    if (su.model == SuspensionModel::kStrut) {
+      const double c_strut = ImplicitDamping(su.damping_nspm, dt, strut_mass_kg);
+      force_up = -(su.preload_n + su.stiffness_npm * s + c_strut * s_dot);
+    } else {
+      const double length = c.shock_length(s);
+      const double dl_ds = c.shock_length.Slope(s);  // -motion ratio
+      const double spring = -su.spring_stiffness_npm * (length - su.spring_free_length_m);
+      const double c_wheel = ImplicitDamping(su.damping_nspm * dl_ds * dl_ds, dt, strut_mass_kg);
+      force_up = spring * dl_ds - c_wheel * s_dot;
+    }
+    // bump and rebound stops: progressive springs beyond the stop travel
+    force_up -= StopForce(su, s - su.bump_travel_m);
+    force_up += StopForce(su, -su.rebound_travel_m - s);
+    world_->AddJointForce(body_, c.carrier_link, force_up);
 
     // drive torque on the wheel joint; brakes as an implicit velocity motor (no creep when held)
     world_->AddJointForce(body_, c.wheel_link, in_->wheel_torques[i]);
@@ -212,6 +288,7 @@ void Vehicle::Synchronize(double dt) {
         world_->ApplyLinkForce(body_, c.wheel_link, out.force_W, wheel.position);
         world_->ApplyLinkTorque(body_, c.wheel_link, out.torque_W);
         c.bristle = BristleState();
+        c.tmeasy = TmeasyState();
         ws.in_contact = out.normal_force_n > 0.0;
         ws.surface = out.surface;
         ws.normal_force_n = out.normal_force_n;
@@ -219,13 +296,28 @@ void Vehicle::Synchronize(double dt) {
         continue;
       }
     }
+    const bool tmeasy = params_.tire.model == TireModel::kTMeasy;
     const ContactGeometry geo =
-        FindWheelContact(terrain_, wheel.position, axis_W, params_.wheel.radius_m);
+        tmeasy ? FindWheelContact(terrain_, wheel.position, axis_W, params_.tire.unloaded_radius_m,
+                                  params_.tire.width_m)
+               : FindWheelContact(terrain_, wheel.position, axis_W, params_.wheel.radius_m,
+                                  params_.wheel.width_m);
     Vec3 v_point = Vec3::Zero();
     if (geo.in_contact) v_point = world_->LinkPointVelocity(body_, c.wheel_link, geo.point_W);
     TireParams tire = params_.tire;
-    tire.normal_damping_nspm = ImplicitDamping(tire.normal_damping_nspm, dt, unsprung_kg);
-    const ContactForce f = ComputeContactForce(tire, geo, v_point, dt, &c.bristle);
+    ContactForce f;
+    if (tmeasy) {
+      tire.vertical_damping_nspm = ImplicitDamping(tire.vertical_damping_nspm, dt, unsprung_kg);
+      const Vec3 v_center =
+          geo.in_contact ? world_->LinkPointVelocity(body_, c.wheel_link, wheel.position)
+                         : Vec3::Zero();
+      f = ComputeTmeasyForce(tire, geo, axis_W, v_point, v_center, in_->wheel_speeds[i], dt,
+                             &c.tmeasy);
+      if (geo.in_contact) world_->ApplyLinkTorque(body_, c.wheel_link, f.torque_W);
+    } else {
+      tire.normal_damping_nspm = ImplicitDamping(tire.normal_damping_nspm, dt, unsprung_kg);
+      f = ComputeContactForce(tire, geo, v_point, dt, &c.bristle);
+    }
     if (geo.in_contact) world_->ApplyLinkForce(body_, c.wheel_link, f.force_W, geo.point_W);
 
     ws.in_contact = geo.in_contact && f.normal_force_n > 0.0;

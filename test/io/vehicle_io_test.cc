@@ -37,11 +37,14 @@ axles:
     driven: true
     brake_torque_nm: 2000.0
     suspension:
+      model: strut
       stiffness_npm: 150000.0
       damping_nspm: 12000.0
       preload_n: 5000.0
       bump_travel_m: 0.12
       rebound_travel_m: 0.1
+      stop_deflection_m: [0.0, 0.01, 0.05]
+      stop_force_n: [0.0, 1000.0, 50000.0]
       carrier_mass_kg: 40.0
       carrier_inertia_kgm2: [0.5, 0.6, 0.5]
   - x_m: -1.6
@@ -51,22 +54,26 @@ axles:
     driven: false
     brake_torque_nm: 1500.0
     suspension:
+      model: strut
       stiffness_npm: 160000.0
       damping_nspm: 13000.0
       preload_n: 5000.0
       bump_travel_m: 0.12
       rebound_travel_m: 0.1
+      stop_deflection_m: [0.0, 0.01, 0.05]
+      stop_force_n: [0.0, 1000.0, 50000.0]
       carrier_mass_kg: 40.0
       carrier_inertia_kgm2: [0.5, 0.6, 0.5]
 steering:
+  model: ackermann
   max_angle_rad: 0.55
-  ackermann: true
 wheel:
   radius_m: 0.47
   width_m: 0.32
   mass_kg: 60.0
   inertia_kgm2: [4.0, 7.0, 4.0]
 tire:
+  model: rigid
   friction: 0.9
   normal_stiffness_npm: 400000.0
   normal_damping_nspm: 3000.0
@@ -83,6 +90,8 @@ transmission:
   reverse_ratio: 0.15
   upshift_rpm: [2500.0, 2500.0, 4000.0]
   downshift_rpm: [0.0, 1200.0, 1200.0]
+  min_time_in_gear_s: 0.5
+  upshift_on_ground_speed: true
 driveline:
   conical_ratio: 0.2
   lock_axle_differentials: false
@@ -161,7 +170,12 @@ TEST_F(VehicleIoTest, LoadsEveryField) {
   EXPECT_EQ(v.axles[0].suspension.carrier_mass_kg, 40.0);
   EXPECT_EQ(v.axles[0].suspension.carrier_inertia_kgm2, Vec3(0.5, 0.6, 0.5));
   EXPECT_EQ(v.steering.max_angle_rad, 0.55);
-  EXPECT_TRUE(v.steering.ackermann);
+  EXPECT_EQ(v.steering.model, vehicles::SteeringModel::kAckermann);
+  EXPECT_EQ(v.axles[0].suspension.model, vehicles::SuspensionModel::kStrut);
+  EXPECT_EQ(v.axles[0].suspension.stop_force_n, (std::vector<double>{0.0, 1000.0, 50000.0}));
+  EXPECT_EQ(v.tire.model, vehicles::TireModel::kRigid);
+  EXPECT_EQ(v.transmission.min_time_in_gear_s, 0.5);
+  EXPECT_TRUE(v.transmission.upshift_on_ground_speed);
   EXPECT_EQ(v.wheel.radius_m, 0.47);
   EXPECT_EQ(v.wheel.width_m, 0.32);
   EXPECT_EQ(v.wheel.mass_kg, 60.0);
@@ -187,12 +201,13 @@ TEST_F(VehicleIoTest, LoadsEveryField) {
 }
 
 TEST_F(VehicleIoTest, ErrorUnknownKey) {
-  ExpectError(EditLine(31, "      stifness_npm: 160000.0"), 31, "axles[1].suspension.stifness_npm",
+  ExpectError(EditLine(34, "      stifness_npm: 160000.0"), 34, "axles[1].suspension.stifness_npm",
               "unknown key 'stifness_npm'");
 }
 
 TEST_F(VehicleIoTest, ErrorMissingKey) {
-  ExpectError(DeleteLines(39, 39), 37, "steering.ackermann", "missing required key 'ackermann'");
+  ExpectError(DeleteLines(45, 45), 43, "steering.max_angle_rad",
+              "missing required key 'max_angle_rad'");
 }
 
 TEST_F(VehicleIoTest, ErrorWrongType) {
@@ -204,29 +219,41 @@ TEST_F(VehicleIoTest, ErrorWrongType) {
 
 TEST_F(VehicleIoTest, ErrorOutOfRange) {
   ExpectError(EditLine(3, "  mass_kg: -2000.0"), 3, "chassis.mass_kg", "must be > 0");
-  ExpectError(EditLine(17, "      damping_nspm: -1.0"), 17, "axles[0].suspension.damping_nspm",
+  ExpectError(EditLine(18, "      damping_nspm: -1.0"), 18, "axles[0].suspension.damping_nspm",
               "must be >= 0");
-  ExpectError(EditLine(41, "  radius_m: 0.0"), 41, "wheel.radius_m", "must be > 0");
-  ExpectError(EditLine(38, "  max_angle_rad: 1.6"), 38, "steering.max_angle_rad", "below pi/2");
-  ExpectError(EditLine(58, "  forward_ratios: [0.2, 0.0, 0.7]"), 58,
+  ExpectError(EditLine(47, "  radius_m: 0.0"), 47, "wheel.radius_m", "must be > 0");
+  ExpectError(EditLine(45, "  max_angle_rad: 1.6"), 45, "steering.max_angle_rad", "below pi/2");
+  ExpectError(EditLine(65, "  forward_ratios: [0.2, 0.0, 0.7]"), 65,
               "transmission.forward_ratios[1]", "must be > 0");
 }
 
 TEST_F(VehicleIoTest, ErrorEngineMap) {
   const std::string slower = "    - {speed_radps: 150.0, full_throttle_nm: 1, zero_throttle_nm: 0}";
-  ExpectError(EditLine(56, slower), 56, "engine.map[2].speed_radps", "strictly ascending");
-  ExpectError(DeleteLines(55, 56), 53, "engine.map", "at least 2 items");
+  ExpectError(EditLine(63, slower), 63, "engine.map[2].speed_radps", "strictly ascending");
+  ExpectError(DeleteLines(62, 63), 60, "engine.map", "at least 2 items");
 }
 
 TEST_F(VehicleIoTest, ErrorShiftListLength) {
-  ExpectError(EditLine(60, "  upshift_rpm: [2500.0, 2500.0]"), 60, "transmission.upshift_rpm",
+  ExpectError(EditLine(67, "  upshift_rpm: [2500.0, 2500.0]"), 67, "transmission.upshift_rpm",
               "exactly 3 items");
 }
 
 TEST_F(VehicleIoTest, ErrorAxles) {
-  ExpectError(DeleteLines(23, 36), 8, "axles", "at least 2 items");
-  ExpectError(EditLine(23, "  - x_m: 1.7"), 23, "axles[1]", "front to rear");
+  ExpectError(DeleteLines(26, 42), 8, "axles", "at least 2 items");
+  ExpectError(EditLine(26, "  - x_m: 1.7"), 26, "axles[1]", "front to rear");
   ExpectError(EditLine(13, "    driven: false"), 8, "axles", "at least one axle must be driven");
+}
+
+TEST_F(VehicleIoTest, ErrorModels) {
+  ExpectError(EditLine(16, "      model: coil"), 16, "axles[0].suspension.model",
+              "unknown model 'coil'; valid: strut, double_wishbone");
+  // a key of the other model is unknown for this one
+  ExpectError(EditLine(19, "      spring_free_length_m: 0.3"), 19,
+              "axles[0].suspension.spring_free_length_m", "unknown key 'spring_free_length_m'");
+  ExpectError(EditLine(23, "      stop_force_n: [0.0, 1000.0]"), 23,
+              "axles[0].suspension.stop_force_n", "as many items");
+  ExpectError(EditLine(44, "  model: rack_pinion"), 45, "steering.max_angle_rad",
+              "unknown key 'max_angle_rad'");
 }
 
 TEST_F(VehicleIoTest, ErrorYamlSyntax) {

@@ -47,4 +47,9 @@ inline vehicles::VehicleParams Hmmwv() {
   return io::LoadVehicle(std::string(VB_SOURCE_DIR) + "/data/vehicles/hmmwv.yaml");
 }
 
+// The same HMMWV with the TMeasy handling tire.
+inline vehicles::VehicleParams HmmwvTmeasy() {
+  return io::LoadVehicle(std::string(VB_SOURCE_DIR) + "/data/vehicles/hmmwv_tmeasy.yaml");
+}
+
 }  // namespace vb::test

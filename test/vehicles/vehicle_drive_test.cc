@@ -39,7 +39,7 @@ struct Sim {
     }
   }
   double TotalMass() const {
-    double m = params.chassis.mass_kg;
+    double m = params.chassis.mass_kg + params.steering.link_mass_kg;
     for (const auto& a : params.axles) m += 2 * (a.suspension.carrier_mass_kg + params.wheel.mass_kg);
     return m;
   }
@@ -66,8 +66,13 @@ TEST(VehicleDrive, SettlesOnFlatGround) {
               s.velocity_W.norm());
   // Wheel loads carry the whole weight once settled.
   EXPECT_NEAR(fz, weight, 0.01 * weight);
-  // Reference point near wheel-centre height: the rigid tire deflects only a few millimetres.
-  EXPECT_NEAR(s.pose_W.position.z(), 0.467, 0.02);
+  // Spindle heights: Chrono front 0.470 m, rear 0.467 m (reference_chrono_runs.md; the rigid
+  // tire barely sinks). The chassis itself sits lower in front: the published spring free
+  // lengths give a front static sag of ~6.7 cm (test/validation/vehicle_static_test.cc).
+  for (size_t i = 0; i < s.wheels.size(); ++i) {
+    std::printf("spindle %zu height %.4f m\n", i, s.wheels[i].center_W.z());
+    EXPECT_NEAR(s.wheels[i].center_W.z(), i < 2 ? 0.470 : 0.467, 0.01);
+  }
   // at rest vertically; with no rolling resistance (as Chrono's rigid tire) the drop may leave a
   // few mm/s of free rolling
   EXPECT_LT(std::abs(s.velocity_W.z()), 1e-3);

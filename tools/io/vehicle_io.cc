@@ -30,18 +30,104 @@ vehicles::ChassisParams ReadChassis(const StrictNode& node) {
   return p;
 }
 
+// A sub-schema chosen by its `model` key: the map is opened with all keys any model allows to
+// read the model, then re-opened with exactly that model's keys so a key of another model is an
+// "unknown key" error at its line.
+std::string ReadModel(const StrictNode& node, std::initializer_list<const char*> all_keys,
+                      const std::vector<std::string>& models) {
+  const StrictNode model = node.AsMap(all_keys).Required("model");
+  const std::string name = model.AsString();
+  std::string valid;
+  for (const std::string& m : models) {
+    if (m == name) return name;
+    valid += (valid.empty() ? "" : ", ") + m;
+  }
+  model.Fail("unknown model '" + name + "'; valid: " + valid);
+}
+
+// Progressive stop: force vs deflection beyond the stop, ascending, starting at (0, 0).
+void ReadStopTable(const StrictMap& m, vehicles::SuspensionParams* p) {
+  const StrictNode d = m.Required("stop_deflection_m");
+  const StrictNode f = m.Required("stop_force_n");
+  for (const StrictNode& item : d.AsList(2)) p->stop_deflection_m.push_back(item.AsNonNegative());
+  for (const StrictNode& item : f.AsList(2)) p->stop_force_n.push_back(item.AsNonNegative());
+  if (p->stop_force_n.size() != p->stop_deflection_m.size()) {
+    f.Fail("must have as many items as stop_deflection_m (" +
+           std::to_string(p->stop_deflection_m.size()) + ")");
+  }
+  if (p->stop_deflection_m[0] != 0.0 || p->stop_force_n[0] != 0.0) {
+    d.Fail("the stop table must start at deflection 0 with force 0");
+  }
+  for (size_t i = 1; i < p->stop_deflection_m.size(); ++i) {
+    if (!(p->stop_deflection_m[i] > p->stop_deflection_m[i - 1])) {
+      d.Fail("stop deflections must be strictly ascending");
+    }
+  }
+}
+
+vehicles::DoubleWishboneHardpoints ReadHardpoints(const StrictNode& node) {
+  const StrictMap m = node.AsMap({"spindle", "uca_f", "uca_b", "uca_u", "lca_f", "lca_b", "lca_u",
+                                  "shock_c", "shock_u", "tierod_c", "tierod_u"});
+  constexpr double kInchToM = 0.0254;  // hard points are given in inches, as published
+  vehicles::DoubleWishboneHardpoints h;
+  h.spindle = kInchToM * m.Required("spindle").AsVec3();
+  h.uca_f = kInchToM * m.Required("uca_f").AsVec3();
+  h.uca_b = kInchToM * m.Required("uca_b").AsVec3();
+  h.uca_u = kInchToM * m.Required("uca_u").AsVec3();
+  h.lca_f = kInchToM * m.Required("lca_f").AsVec3();
+  h.lca_b = kInchToM * m.Required("lca_b").AsVec3();
+  h.lca_u = kInchToM * m.Required("lca_u").AsVec3();
+  h.shock_c = kInchToM * m.Required("shock_c").AsVec3();
+  h.shock_u = kInchToM * m.Required("shock_u").AsVec3();
+  h.tierod_c = kInchToM * m.Required("tierod_c").AsVec3();
+  h.tierod_u = kInchToM * m.Required("tierod_u").AsVec3();
+  return h;
+}
+
 vehicles::SuspensionParams ReadSuspension(const StrictNode& node) {
-  const StrictMap m =
-      node.AsMap({"stiffness_npm", "damping_nspm", "preload_n", "bump_travel_m",
-                  "rebound_travel_m", "carrier_mass_kg", "carrier_inertia_kgm2"});
   vehicles::SuspensionParams p;
-  p.stiffness_npm = m.Required("stiffness_npm").AsPositive();
+  const std::string model = ReadModel(
+      node,
+      {"model", "stiffness_npm", "preload_n", "spring_stiffness_npm", "spring_free_length_m",
+       "hardpoints_in", "damping_nspm", "bump_travel_m", "rebound_travel_m", "stop_deflection_m",
+       "stop_force_n", "carrier_mass_kg", "carrier_inertia_kgm2"},
+      {"strut", "double_wishbone"});
+  const bool strut = model == "strut";
+  const StrictMap m =
+      strut ? node.AsMap({"model", "stiffness_npm", "preload_n", "damping_nspm", "bump_travel_m",
+                          "rebound_travel_m", "stop_deflection_m", "stop_force_n",
+                          "carrier_mass_kg", "carrier_inertia_kgm2"})
+            : node.AsMap({"model", "spring_stiffness_npm", "spring_free_length_m",
+                          "hardpoints_in", "damping_nspm", "bump_travel_m", "rebound_travel_m",
+                          "stop_deflection_m", "stop_force_n", "carrier_mass_kg",
+                          "carrier_inertia_kgm2"});
+  if (strut) {
+    p.model = vehicles::SuspensionModel::kStrut;
+    p.stiffness_npm = m.Required("stiffness_npm").AsPositive();
+    p.preload_n = m.Required("preload_n").AsNonNegative();
+  } else {
+    p.model = vehicles::SuspensionModel::kDoubleWishbone;
+    p.spring_stiffness_npm = m.Required("spring_stiffness_npm").AsPositive();
+    p.spring_free_length_m = m.Required("spring_free_length_m").AsPositive();
+    p.hardpoints = ReadHardpoints(m.Required("hardpoints_in"));
+  }
   p.damping_nspm = m.Required("damping_nspm").AsNonNegative();
-  p.preload_n = m.Required("preload_n").AsNonNegative();
   p.bump_travel_m = m.Required("bump_travel_m").AsNonNegative();
   p.rebound_travel_m = m.Required("rebound_travel_m").AsNonNegative();
+  ReadStopTable(m, &p);
   p.carrier_mass_kg = m.Required("carrier_mass_kg").AsPositive();
   p.carrier_inertia_kgm2 = m.Required("carrier_inertia_kgm2").AsPositiveVec3();
+  if (!strut) {
+    // The linkage must assemble over the whole travel the stops allow (plus the stop stroke).
+    const double lo = -p.rebound_travel_m - p.stop_deflection_m.back();
+    const double hi = p.bump_travel_m + p.stop_deflection_m.back();
+    for (double s : {lo, 0.0, hi}) {
+      if (!vehicles::SolveDoubleWishbone(p.hardpoints, s, 0.0).ok) {
+        m.Required("hardpoints_in").Fail("the linkage does not assemble at wheel travel " +
+                                         FormatDouble(s) + " m");
+      }
+    }
+  }
   return p;
 }
 
@@ -77,15 +163,31 @@ std::vector<AxleParams> ReadAxles(const StrictNode& node) {
 }
 
 vehicles::SteeringParams ReadSteering(const StrictNode& node) {
-  const StrictMap m = node.AsMap({"max_angle_rad", "ackermann"});
   vehicles::SteeringParams p;
-  const StrictNode angle = m.Required("max_angle_rad");
-  p.max_angle_rad = angle.AsPositive();
+  const std::string model =
+      ReadModel(node,
+                {"model", "max_angle_rad", "max_pinion_angle_rad", "pinion_radius_m",
+                 "link_mass_kg", "link_position_B"},
+                {"ackermann", "rack_pinion"});
   // Ackermann geometry and the kinematics break down at a right angle.
-  if (!(p.max_angle_rad < 0.5 * M_PI)) {
-    angle.Fail("must be below pi/2, got " + FormatDouble(p.max_angle_rad));
+  auto below_right_angle = [](const StrictNode& n) {
+    const double a = n.AsPositive();
+    if (!(a < 0.5 * M_PI)) n.Fail("must be below pi/2, got " + FormatDouble(a));
+    return a;
+  };
+  if (model == "ackermann") {
+    const StrictMap m = node.AsMap({"model", "max_angle_rad"});
+    p.model = vehicles::SteeringModel::kAckermann;
+    p.max_angle_rad = below_right_angle(m.Required("max_angle_rad"));
+  } else {
+    const StrictMap m = node.AsMap({"model", "max_pinion_angle_rad", "pinion_radius_m",
+                                    "link_mass_kg", "link_position_B"});
+    p.model = vehicles::SteeringModel::kRackPinion;
+    p.max_pinion_angle_rad = below_right_angle(m.Required("max_pinion_angle_rad"));
+    p.pinion_radius_m = m.Required("pinion_radius_m").AsPositive();
+    p.link_mass_kg = m.Required("link_mass_kg").AsNonNegative();
+    p.link_position_B = m.Required("link_position_B").AsVec3();
   }
-  p.ackermann = m.Required("ackermann").AsBool();
   return p;
 }
 
@@ -99,15 +201,66 @@ vehicles::WheelParams ReadWheel(const StrictNode& node) {
   return p;
 }
 
+vehicles::TmeasyDirection ReadTmeasyDirection(const StrictNode& node) {
+  const StrictMap m = node.AsMap({"df0", "fm", "sm", "fs", "ss"});
+  vehicles::TmeasyDirection d;
+  d.df0 = m.Required("df0").AsPositive();
+  d.fm = m.Required("fm").AsPositive();
+  d.sm = m.Required("sm").AsPositive();
+  d.fs = m.Required("fs").AsPositive();
+  const StrictNode ss = m.Required("ss");
+  d.ss = ss.AsPositive();
+  if (!(d.ss > d.sm)) ss.Fail("sliding slip ss must exceed the peak slip sm");
+  return d;
+}
+
 vehicles::TireParams ReadTire(const StrictNode& node) {
-  const StrictMap m = node.AsMap({"friction", "normal_stiffness_npm", "normal_damping_nspm",
-                                  "bristle_stiffness_npm", "bristle_damping_nspm"});
   vehicles::TireParams p;
-  p.friction = m.Required("friction").AsPositive();
-  p.normal_stiffness_npm = m.Required("normal_stiffness_npm").AsPositive();
-  p.normal_damping_nspm = m.Required("normal_damping_nspm").AsNonNegative();
-  p.bristle_stiffness_npm = m.Required("bristle_stiffness_npm").AsPositive();
-  p.bristle_damping_nspm = m.Required("bristle_damping_nspm").AsNonNegative();
+  const std::string model = ReadModel(
+      node,
+      {"model", "friction", "normal_stiffness_npm", "normal_damping_nspm",
+       "bristle_stiffness_npm", "bristle_damping_nspm", "unloaded_radius_m", "width_m",
+       "vertical_stiffness_npm", "vertical_damping_nspm", "rim_radius_m", "rim_stiffness_npm",
+       "rated_load_n", "longitudinal_at_pn", "longitudinal_at_2pn", "lateral_at_pn",
+       "lateral_at_2pn", "mu_0", "rolling_resistance", "relaxation_x_m", "relaxation_y_m",
+       "slip_damping_nspm"},
+      {"rigid", "tmeasy"});
+  if (model == "rigid") {
+    const StrictMap m = node.AsMap({"model", "friction", "normal_stiffness_npm",
+                                    "normal_damping_nspm", "bristle_stiffness_npm",
+                                    "bristle_damping_nspm"});
+    p.model = vehicles::TireModel::kRigid;
+    p.friction = m.Required("friction").AsPositive();
+    p.normal_stiffness_npm = m.Required("normal_stiffness_npm").AsPositive();
+    p.normal_damping_nspm = m.Required("normal_damping_nspm").AsNonNegative();
+    p.bristle_stiffness_npm = m.Required("bristle_stiffness_npm").AsPositive();
+    p.bristle_damping_nspm = m.Required("bristle_damping_nspm").AsNonNegative();
+    return p;
+  }
+  const StrictMap m = node.AsMap(
+      {"model", "unloaded_radius_m", "width_m", "vertical_stiffness_npm", "vertical_damping_nspm",
+       "rim_radius_m", "rim_stiffness_npm", "rated_load_n", "longitudinal_at_pn", "longitudinal_at_2pn", "lateral_at_pn",
+       "lateral_at_2pn", "mu_0", "rolling_resistance", "relaxation_x_m", "relaxation_y_m",
+       "slip_damping_nspm"});
+  p.model = vehicles::TireModel::kTMeasy;
+  p.unloaded_radius_m = m.Required("unloaded_radius_m").AsPositive();
+  p.width_m = m.Required("width_m").AsPositive();
+  p.vertical_stiffness_npm = m.Required("vertical_stiffness_npm").AsPositive();
+  p.vertical_damping_nspm = m.Required("vertical_damping_nspm").AsNonNegative();
+  const StrictNode rim = m.Required("rim_radius_m");
+  p.rim_radius_m = rim.AsPositive();
+  if (!(p.rim_radius_m < p.unloaded_radius_m)) rim.Fail("must be below unloaded_radius_m");
+  p.rim_stiffness_npm = m.Required("rim_stiffness_npm").AsNonNegative();
+  p.rated_load_n = m.Required("rated_load_n").AsPositive();
+  p.x_pn = ReadTmeasyDirection(m.Required("longitudinal_at_pn"));
+  p.x_2pn = ReadTmeasyDirection(m.Required("longitudinal_at_2pn"));
+  p.y_pn = ReadTmeasyDirection(m.Required("lateral_at_pn"));
+  p.y_2pn = ReadTmeasyDirection(m.Required("lateral_at_2pn"));
+  p.mu_0 = m.Required("mu_0").AsPositive();
+  p.rolling_resistance = m.Required("rolling_resistance").AsNonNegative();
+  p.relaxation_x_m = m.Required("relaxation_x_m").AsPositive();
+  p.relaxation_y_m = m.Required("relaxation_y_m").AsPositive();
+  p.slip_damping_nspm = m.Required("slip_damping_nspm").AsNonNegative();
   return p;
 }
 
@@ -145,14 +298,17 @@ std::vector<double> ReadShiftList(const StrictNode& node, size_t gears) {
 }
 
 vehicles::TransmissionParams ReadTransmission(const StrictNode& node) {
-  const StrictMap m =
-      node.AsMap({"forward_ratios", "reverse_ratio", "upshift_rpm", "downshift_rpm"});
+  const StrictMap m = node.AsMap({"forward_ratios", "reverse_ratio", "upshift_rpm",
+                                  "downshift_rpm", "min_time_in_gear_s",
+                                  "upshift_on_ground_speed"});
   vehicles::TransmissionParams p;
   p.forward_ratios = ReadPositiveList(m.Required("forward_ratios"), 1);
   // A magnitude: the reverse gear itself flips the direction.
   p.reverse_ratio = m.Required("reverse_ratio").AsPositive();
   p.upshift_rpm = ReadShiftList(m.Required("upshift_rpm"), p.forward_ratios.size());
   p.downshift_rpm = ReadShiftList(m.Required("downshift_rpm"), p.forward_ratios.size());
+  p.min_time_in_gear_s = m.Required("min_time_in_gear_s").AsNonNegative();
+  p.upshift_on_ground_speed = m.Required("upshift_on_ground_speed").AsBool();
   return p;
 }
 
@@ -180,6 +336,15 @@ vehicles::VehicleParams LoadVehicle(const std::string& path) {
   v.chassis = ReadChassis(top.Required("chassis"));
   v.axles = ReadAxles(top.Required("axles"));
   v.steering = ReadSteering(top.Required("steering"));
+  if (v.steering.model == vehicles::SteeringModel::kRackPinion) {
+    for (const AxleParams& axle : v.axles) {
+      if (axle.steered && axle.suspension.model != vehicles::SuspensionModel::kDoubleWishbone) {
+        top.Required("steering").Fail(
+            "rack_pinion steering needs double_wishbone suspension (tie-rod hard points) on "
+            "every steered axle");
+      }
+    }
+  }
   v.wheel = ReadWheel(top.Required("wheel"));
   v.tire = ReadTire(top.Required("tire"));
   v.engine = ReadEngine(top.Required("engine"));

@@ -16,21 +16,29 @@ double EngineTorque(const EngineParams& engine, double speed_radps, double throt
 
 struct PowertrainState {
   int gear = 1;                      // 1-based forward gear
+  double time_in_gear_s = 0.0;       // since the last shift
   double engine_speed_radps = 0.0;
   double engine_torque_nm = 0.0;
 };
 
-// Shift logic of the automatic transmission: upshift above upshift_rpm[gear-1], downshift below
-// downshift_rpm[gear-1]; one gear per call.
-void UpdateGear(const TransmissionParams& transmission, PowertrainState* state);
+// Shift logic of the automatic transmission. Chrono's AUTOMATIC_SIMPLE_MAP shifts on the engine
+// speed alone: up above upshift_rpm[gear-1], down below downshift_rpm[gear-1]. vb keeps those
+// thresholds, holds a gear for min_time_in_gear_s after a shift, and, if
+// upshift_on_ground_speed, judges upshifts on min(engine speed, engine speed implied by the
+// vehicle's ground speed), so wheels spinning against an obstacle do not climb the gears (off for
+// the HMMWV: on env000 it lowered PID success, see docs/validation.md). One gear per call.
+// ground_engine_speed_radps: ground speed / (r * ratio).
+void UpdateGear(const TransmissionParams& transmission, double ground_engine_speed_radps,
+                double dt, PowertrainState* state);
 
 // Drive torque on each driven wheel (N·m, + = forward) for the given throttle and wheel spin
-// speeds (rad/s, same order as `driven`): engine speed from the mean driven-wheel speed, engine
+// speeds (rad/s, same order as `driven`), chassis forward speed (m/s, for the shift logic): engine speed from the mean driven-wheel speed, engine
 // torque through gear and conical ratios, equal split, plus the clutch torques of locked
 // differentials that oppose left-right (and front-rear) speed differences.
 void ComputeWheelTorques(const VehicleParams& params, double throttle,
                          const std::vector<double>& wheel_speeds_radps,
-                         const std::vector<bool>& driven, PowertrainState* state,
+                         const std::vector<bool>& driven, double ground_speed_mps, double dt,
+                         PowertrainState* state,
                          std::vector<double>* wheel_torques_nm);
 
 }  // namespace vb::vehicles

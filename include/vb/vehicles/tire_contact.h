@@ -1,5 +1,7 @@
-// Rigid-tire / rigid-ground contact owned by vb (not Bullet): one contact point per wheel at the
-// lowest point of the wheel disc relative to the local terrain plane.
+// Rigid-tire / rigid-ground contact owned by vb (not Bullet): the tire is a cylinder (radius,
+// width); its lowest generatrix relative to the local terrain plane gives a line load whose
+// resultant is one contact point per wheel (tread centre on level contact, moving towards the
+// lower tread edge when the wheel is tilted against the ground, e.g. on a tilt table).
 //  - Normal: penalty spring-damper on the penetration, never pulling.
 //  - Tangential: an elastic bristle (stick state) with damping, limited by Coulomb
 //    |Ft| <= mu*Fn with mu = min(tire mu, patch mu) (Chrono's NSC composition). The bristle holds
@@ -16,16 +18,17 @@ namespace vb::vehicles {
 // Where the wheel touches the ground (geometry only).
 struct ContactGeometry {
   bool in_contact = false;
-  Vec3 point_W = Vec3::Zero();      // lowest point of the wheel disc
+  Vec3 point_W = Vec3::Zero();      // resultant of the line load on the lowest generatrix
   Vec3 normal_W = Vec3::UnitZ();    // terrain normal there
   double penetration_m = 0.0;       // along the normal, > 0 when in contact
   terrain::SurfaceClass surface = terrain::SurfaceClass::kDirt;
   double patch_friction = 0.0;
 };
 
-// Finds the contact of a wheel of radius r with centre c_W and spin axis axis_W (unit).
+// Finds the contact of a cylinder of radius r and width w with centre c_W and spin axis axis_W
+// (unit). penetration_m is the mean penetration over the width (normal force = k * mean).
 ContactGeometry FindWheelContact(const terrain::Terrain& terrain, const Vec3& c_W,
-                                 const Vec3& axis_W, double radius_m);
+                                 const Vec3& axis_W, double radius_m, double width_m);
 
 // Bristle state of one contact (world-frame tangential deflection, m).
 struct BristleState {
@@ -34,6 +37,7 @@ struct BristleState {
 
 struct ContactForce {
   Vec3 force_W = Vec3::Zero();      // total force on the wheel at the contact point
+  Vec3 torque_W = Vec3::Zero();     // extra torque on the wheel (rolling resistance)
   double normal_force_n = 0.0;
 };
 

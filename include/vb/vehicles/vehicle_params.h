@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "vb/engine/types.h"
+#include "vb/vehicles/suspension_kinematics.h"
 
 namespace vb::vehicles {
 
@@ -19,15 +20,33 @@ struct ChassisParams {
   Vec3 collision_box_size_m = Vec3::Zero();  // full lengths
 };
 
-// Vertical strut suspension (first version): the wheel carrier slides along chassis z.
-// Travel s is positive in compression (wheel moves up relative to the chassis); s = 0 at the
-// design position. Strut force on the wheel (downwards, N) = preload + k*s + c*ds/dt.
+// Suspension of one axle. In the multibody tree every wheel carrier slides along chassis z (a
+// closed wishbone loop cannot be a Bullet multibody tree); travel s is positive in compression
+// (wheel up relative to the chassis), s = 0 at the design position.
+//  - kStrut: the slider is the suspension: force on the wheel (down) = preload + k*s + c*ds/dt.
+//  - kDoubleWishbone: Chrono's reduced double wishbone. The published hard points decide the
+//    shock length L(s) (motion ratio -dL/ds, wheel lateral motion and camber are neglected) and,
+//    on steered axles, the road-wheel angle vs rack travel. The spring-damper acts along the shock:
+//    F = -k (L - L0) - c dL/dt (+ pushes the mounts apart), i.e. -F dL/ds on the slider.
+// Both: progressive bump and rebound stops (table of force vs deflection beyond the stop) engage
+// at s = +bump_travel_m and s = -rebound_travel_m.
+enum class SuspensionModel { kStrut, kDoubleWishbone };
+
 struct SuspensionParams {
-  double stiffness_npm = 0.0;       // wheel rate (spring rate times motion ratio squared)
-  double damping_nspm = 0.0;        // wheel-rate damping
+  SuspensionModel model = SuspensionModel::kStrut;
+  // kStrut
+  double stiffness_npm = 0.0;       // wheel rate
   double preload_n = 0.0;           // spring force at s = 0
-  double bump_travel_m = 0.0;       // max compression (bump stop)
-  double rebound_travel_m = 0.0;    // max extension (rebound stop)
+  // kDoubleWishbone
+  double spring_stiffness_npm = 0.0;   // along the shock
+  double spring_free_length_m = 0.0;
+  DoubleWishboneHardpoints hardpoints; // left side, suspension frame (only differences matter)
+  // both
+  double damping_nspm = 0.0;        // kStrut: at the wheel; kDoubleWishbone: along the shock
+  double bump_travel_m = 0.0;       // stop engagement (compression)
+  double rebound_travel_m = 0.0;    // stop engagement (extension)
+  std::vector<double> stop_deflection_m;  // ascending, first 0
+  std::vector<double> stop_force_n;       // same length, first 0
   double carrier_mass_kg = 0.0;     // upright + spindle
   Vec3 carrier_inertia_kgm2 = Vec3::Ones();
 };
@@ -39,14 +58,45 @@ struct WheelParams {
   Vec3 inertia_kgm2 = Vec3::Ones(); // (x, spin y, z)
 };
 
-// Rigid tire contact: normal penalty spring-damper, elastic bristle for static friction,
-// Coulomb limit mu = min(tire mu, patch mu) (Chrono's NSC composition rule).
+// Tire model.
+//  - kRigid: Chrono's rigid tire: a cylinder (wheel radius_m, width_m) against the terrain
+//    surface; normal penalty spring-damper, elastic bristle for static friction, Coulomb limit
+//    mu = min(tire friction, patch mu) (Chrono's NSC composition rule).
+//  - kTMeasy: handling tire with slip-force curves (tmeasy_tire.h); the patch mu scales the
+//    force maxima by mu / mu_0.
+enum class TireModel { kRigid, kTMeasy };
+
+// One direction (longitudinal x or lateral y) of a TMeasy characteristic at one load.
+struct TmeasyDirection {
+  double df0 = 0.0;   // initial slope, N per unit slip
+  double fm = 0.0;    // peak force, N
+  double sm = 0.0;    // slip at the peak
+  double fs = 0.0;    // sliding force, N
+  double ss = 0.0;    // slip where sliding starts
+};
+
 struct TireParams {
+  TireModel model = TireModel::kRigid;
+  // kRigid
   double friction = 0.9;                 // tire material mu
   double normal_stiffness_npm = 0.0;
   double normal_damping_nspm = 0.0;
   double bristle_stiffness_npm = 0.0;    // tangential stiffness of the stick state
   double bristle_damping_nspm = 0.0;
+  // kTMeasy
+  double unloaded_radius_m = 0.0;
+  double width_m = 0.0;
+  double vertical_stiffness_npm = 0.0;
+  double vertical_damping_nspm = 0.0;
+  double rim_radius_m = 0.0;             // the tire bottoms out on the rim beyond r - rim radius
+  double rim_stiffness_npm = 0.0;        // contact stiffness of the rim (like the rigid tire)
+  double rated_load_n = 0.0;             // pn
+  TmeasyDirection x_pn, x_2pn, y_pn, y_2pn;
+  double mu_0 = 0.8;                     // road friction the curves were measured on
+  double rolling_resistance = 0.0;       // coefficient
+  double relaxation_x_m = 0.0;           // sigma: dF0 / sigma is the stiffness at rest
+  double relaxation_y_m = 0.0;
+  double slip_damping_nspm = 0.0;        // damping of the relaxation deflection
 };
 
 struct AxleParams {
@@ -59,9 +109,20 @@ struct AxleParams {
   SuspensionParams suspension;
 };
 
+// kAckermann: ideal geometry, the inner wheel gets max_angle_rad. kRackPinion: Chrono's
+// rack-pinion, rack travel = input * max_pinion_angle * pinion_radius, road-wheel angles from
+// the steered axles' double-wishbone tie-rod geometry (needs kDoubleWishbone suspension there).
+enum class SteeringModel { kAckermann, kRackPinion };
+
 struct SteeringParams {
-  double max_angle_rad = 0.0;       // road-wheel angle of the inner wheel at full input
-  bool ackermann = true;            // inner/outer angles from Ackermann geometry
+  SteeringModel model = SteeringModel::kAckermann;
+  double max_angle_rad = 0.0;          // kAckermann
+  double max_pinion_angle_rad = 0.0;   // kRackPinion
+  double pinion_radius_m = 0.0;        // kRackPinion
+  // kRackPinion: the steering link (rack) moves only along y, so its mass is lumped into the
+  // chassis (at this point, chassis frame; inertia (1,1,1) kg m^2 as Chrono's).
+  double link_mass_kg = 0.0;
+  Vec3 link_position_B = Vec3::Zero();
 };
 
 struct EngineMapPoint {
@@ -80,6 +141,11 @@ struct TransmissionParams {
   double reverse_ratio = 0.0;           // magnitude (> 0) of the reverse gear ratio
   std::vector<double> upshift_rpm;      // per gear
   std::vector<double> downshift_rpm;    // per gear
+  // Shift logic additions (see powertrain.h): a gear is held at least min_time_in_gear_s after a
+  // shift (hysteresis against hunting); optionally upshifts are judged on the engine speed the
+  // vehicle's ground speed implies, so wheels spinning against an obstacle do not upshift.
+  double min_time_in_gear_s = 0.0;
+  bool upshift_on_ground_speed = false;
 };
 
 struct DrivelineParams {

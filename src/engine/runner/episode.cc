@@ -238,6 +238,20 @@ TrialResult RunTrial(const terrain::TaskSpec& task, const vehicles::VehicleParam
   context.seed = spec.seed;
   controller->Reset(context);
 
+  // Optional timing breakdown: a clock read between the stages, only when asked for.
+  using Clock = std::chrono::steady_clock;
+  StepTimings* const timings = rules.timings;
+  Clock::time_point mark = Clock::now();
+  auto lap = [&](double* bucket) {
+    if (timings == nullptr) return;
+    const Clock::time_point now = Clock::now();
+    *bucket += std::chrono::duration<double>(now - mark).count();
+    mark = now;
+  };
+  if (timings != nullptr) {
+    timings->setup_s += std::chrono::duration<double>(mark - wall_start).count();
+  }
+
   // Step counts instead of accumulated time: t = k * dt never drifts.
   const double dt = rules.step_s;
   const long max_steps = std::max(1L, std::lround(rules.time_limit_s / dt));
@@ -264,6 +278,10 @@ TrialResult RunTrial(const terrain::TaskSpec& task, const vehicles::VehicleParam
   long k = 0;
   try {
     while (true) {
+      if (timings != nullptr) {  // the previous step's checks, metrics and rules
+        lap(&timings->bookkeeping_s);
+        ++timings->steps;
+      }
       // Controller on the current observation.
       const vehicles::VehicleState& s0 = vehicle.state();
       controllers::Observation obs;
@@ -273,6 +291,7 @@ TrialResult RunTrial(const terrain::TaskSpec& task, const vehicles::VehicleParam
       obs.velocity_W = s0.velocity_W;
       obs.forward_speed_mps = s0.forward_speed_mps;
       const controllers::Command cmd = controller->Update(obs);
+      if (timings != nullptr) lap(&timings->controller_s);
       if (!std::isfinite(cmd.throttle) || !std::isfinite(cmd.steering) ||
           !std::isfinite(cmd.braking)) {
         result.status = TrialStatus::kSimError;
@@ -287,9 +306,15 @@ TrialResult RunTrial(const terrain::TaskSpec& task, const vehicles::VehicleParam
       // One physics step.
       vehicle.SetInputs(inputs);
       vehicle.Synchronize(dt);
-      if (soil) soil->EndStep(dt);
+      if (timings != nullptr) lap(&timings->vehicle_sync_s);
+      if (soil) {
+        soil->EndStep(dt);
+        if (timings != nullptr) lap(&timings->soil_s);
+      }
       world.Step(dt);
+      if (timings != nullptr) lap(&timings->physics_step_s);
       vehicle.UpdateState();
+      if (timings != nullptr) lap(&timings->vehicle_update_s);
       ++k;
       const double t = static_cast<double>(k) * dt;
       result.sim_time_s = t;
@@ -354,6 +379,7 @@ TrialResult RunTrial(const terrain::TaskSpec& task, const vehicles::VehicleParam
     decided = true;
   }
 
+  if (timings != nullptr) lap(&timings->bookkeeping_s);
   const vehicles::VehicleState& final_state = vehicle.state();
   // The last state always closes the trajectory (unless it is the invalid one of a sim_error).
   if (result.status != TrialStatus::kSimError &&

@@ -19,6 +19,20 @@ namespace vb::runner {
 enum class TrialStatus { kSuccess, kRollover, kStuck, kTimeout, kSimError };
 std::string_view TrialStatusName(TrialStatus s);
 
+// Optional wall-clock breakdown of the stepping loop (benchmarks only; timing never feeds back
+// into the simulation, so results stay bit-identical with or without it). Seconds, summed.
+struct StepTimings {
+  double controller_s = 0.0;      // controller->Update
+  double vehicle_sync_s = 0.0;    // SetInputs + Synchronize (suspension, powertrain, tire and
+                                  // wheel-soil contact)
+  double soil_s = 0.0;            // soil EndStep (material flow, bookkeeping); 0 on rigid worlds
+  double physics_step_s = 0.0;    // Bullet multibody step (incl. chassis/obstacle collisions)
+  double vehicle_update_s = 0.0;  // UpdateState (post-step read-out)
+  double bookkeeping_s = 0.0;     // state checks, metrics, trajectory, success/failure rules
+  double setup_s = 0.0;           // world, terrain mesh, planner grid, vehicle construction
+  long steps = 0;
+};
+
 struct EpisodeRules {
   double step_s = 0.005;               // physics step (as the original)
   double time_limit_s = 60.0;
@@ -29,6 +43,7 @@ struct EpisodeRules {
   double start_height_m = 0.5;         // drop height of the wheel bottoms above the terrain
   bool end_early = true;               // stop once the failure is certain
   int trajectory_every_n_steps = 1;    // trajectory decimation
+  StepTimings* timings = nullptr;      // if set, the loop adds its wall-clock breakdown here
 };
 
 struct TrialSpec {
