@@ -283,6 +283,8 @@ void Vehicle::Synchronize(double dt) {
       in.angular_velocity_W = world_->LinkAngularVelocity(body_, c.wheel_link);
       in.radius_m = params_.wheel.radius_m;
       in.width_m = params_.wheel.width_m;
+      in.mass_kg = unsprung_kg;
+      in.spin_inertia_kgm2 = params_.wheel.inertia_kgm2.y();
       const soil::WheelSoilOutput out = soil_->WheelContact(in, dt);
       if (out.on_soil) {
         world_->ApplyLinkForce(body_, c.wheel_link, out.force_W, wheel.position);
