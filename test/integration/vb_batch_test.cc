@@ -18,6 +18,8 @@
 
 #include <gtest/gtest.h>
 
+#include "support/cli.h"
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -29,29 +31,11 @@ const std::string kTasks = std::string(VB_SOURCE_DIR "/tasks/env010.yaml ") +
 // 32 s is enough for both successes (29-30 s) and both stuck trials (13-15 s) of these pairs.
 const std::string kMatrix = kTasks + " --pairs 0,1 --time-limit 32 --traj-every 20 --quiet";
 
-struct Outcome {
-  int exit_code = -1;
-  std::string output;
-};
+using Outcome = vb::testing::CommandOutcome;
 
-Outcome Sh(const std::string& cmd) {
-  Outcome o;
-  FILE* p = popen((cmd + " 2>&1").c_str(), "r");
-  if (p == nullptr) return o;
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof(buf), p)) > 0) o.output.append(buf, n);
-  const int status = pclose(p);
-  o.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return o;
-}
+Outcome Sh(const std::string& cmd) { return vb::testing::RunCommand(cmd); }
 
-std::string ReadFile(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+std::string ReadFile(const fs::path& path) { return vb::testing::ReadFileBytes(path); }
 
 size_t CountJson(const fs::path& trials) {
   size_t n = 0;

@@ -12,6 +12,8 @@
 
 #include <gtest/gtest.h>
 
+#include "support/cli.h"
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -19,29 +21,11 @@ namespace fs = std::filesystem;
 const std::string kBin = VB_BIN_DIR;
 const std::string kSamples = VB_SHARED_DIR "/verti_bench_samples";
 
-struct Outcome {
-  int exit_code = -1;
-  std::string output;
-};
+using Outcome = vb::testing::CommandOutcome;
+using vb::testing::RunCommand;
 
-Outcome RunCommand(const std::string& command) {
-  Outcome o;
-  FILE* p = popen((command + " 2>&1").c_str(), "r");
-  if (p == nullptr) return o;
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof(buf), p)) > 0) o.output.append(buf, n);
-  const int status = pclose(p);
-  o.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return o;
-}
 
-std::string ReadAll(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+std::string ReadAll(const fs::path& path) { return vb::testing::ReadFileBytes(path); }
 
 class ToolsTest : public ::testing::Test {
  protected:

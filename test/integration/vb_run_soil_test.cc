@@ -12,33 +12,19 @@
 
 #include <gtest/gtest.h>
 
+#include "support/cli.h"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Outcome {
-  int exit_code = -1;
-  std::string output;
-};
+using Outcome = vb::testing::CommandOutcome;
 
 Outcome RunVbRun(const std::string& args) {
-  Outcome o;
-  FILE* p = popen((std::string(VB_BIN_DIR "/vb_run ") + args + " 2>&1").c_str(), "r");
-  if (p == nullptr) return o;
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof(buf), p)) > 0) o.output.append(buf, n);
-  const int status = pclose(p);
-  o.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return o;
+  return vb::testing::RunCommand(std::string(VB_BIN_DIR "/vb_run ") + args);
 }
 
-std::string ReadFile(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+std::string ReadFile(const fs::path& path) { return vb::testing::ReadFileBytes(path); }
 
 // Largest value in the sinkage_w*_m columns of a trajectory CSV.
 double MaxSinkage(const fs::path& csv) {

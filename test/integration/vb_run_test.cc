@@ -12,6 +12,8 @@
 
 #include <gtest/gtest.h>
 
+#include "support/cli.h"
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -19,29 +21,11 @@ namespace fs = std::filesystem;
 const std::string kVbRun = VB_BIN_DIR "/vb_run";
 const std::string kTask = VB_SOURCE_DIR "/tasks/env042.yaml";
 
-struct Outcome {
-  int exit_code = -1;
-  std::string output;  // stdout and stderr
-};
+using Outcome = vb::testing::CommandOutcome;
 
-Outcome RunVbRun(const std::string& args) {
-  Outcome o;
-  FILE* p = popen((kVbRun + " " + args + " 2>&1").c_str(), "r");
-  if (p == nullptr) return o;
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof(buf), p)) > 0) o.output.append(buf, n);
-  const int status = pclose(p);
-  o.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return o;
-}
+Outcome RunVbRun(const std::string& args) { return vb::testing::RunCommand(kVbRun + " " + args); }
 
-std::string ReadFile(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+std::string ReadFile(const fs::path& path) { return vb::testing::ReadFileBytes(path); }
 
 // The JSON without the lines that legitimately differ between runs (wall clock, machine).
 std::string StableJsonLines(const fs::path& path) {

@@ -2,7 +2,9 @@
 
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
+#include <exception>
 
 #include "vb/engine/error.h"
 
@@ -37,6 +39,23 @@ double ArgReader::NumberValue(bool positive) {
 }
 
 void ArgReader::Unknown() const { throw InputError("", 0, arg_, "unknown option (see --help)"); }
+
+int ToolMain(const char* tool, const std::function<int()>& body) {
+  try {
+    return body();
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "%s: error: %s\n", tool, e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: internal error: %s\n", tool, e.what());
+    return 1;
+  }
+}
+
+int PrintUsage(const char* usage) {
+  std::fputs(usage, stdout);
+  return 0;
+}
 
 uint64_t ParseU64(const std::string& flag, const std::string& text) {
   char* end = nullptr;

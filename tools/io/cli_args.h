@@ -11,6 +11,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,13 @@ class ArgReader {
   int i_ = 0;
   std::string arg_;
 };
+
+// The exit-code convention of every vb tool around its body: the body's own code, 2 for bad
+// input (InputError, printed as "<tool>: error: <file:line: key: message>"), 1 for anything
+// else ("<tool>: internal error: ..."). Never lets an exception escape.
+int ToolMain(const char* tool, const std::function<int()>& body);
+// Prints a usage text to stdout; returns 0 (for `return PrintUsage(kUsage);`).
+int PrintUsage(const char* usage);
 
 // The same parsing for values that arrive some other way (lists, defaults).
 uint64_t ParseU64(const std::string& flag, const std::string& text);

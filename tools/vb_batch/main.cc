@@ -21,6 +21,7 @@
 #include <thread>
 #include <vector>
 
+#include "io/cli_args.h"
 #include "io/batch_io.h"
 #include "io/result_io.h"
 #include "io/yaml_strict.h"
@@ -350,18 +351,9 @@ int Run(const Options& o) {
 }  // namespace vb_batch
 
 int main(int argc, char** argv) {
-  try {
-    const vb_batch::Options options = vb_batch::ParseArgs(argc, argv);
-    if (options.help) {
-      std::fputs(vb_batch::kUsage, stdout);
-      return 0;
-    }
-    return vb_batch::Run(options);
-  } catch (const vb::InputError& e) {
-    std::fprintf(stderr, "vb_batch: error: %s\n", e.what());
-    return 2;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "vb_batch: internal error: %s\n", e.what());
-    return 1;
-  }
+  return vb::io::ToolMain("vb_batch", [&] {
+    const vb_batch::Options o = vb_batch::ParseArgs(argc, argv);
+    if (o.help) return vb::io::PrintUsage(vb_batch::kUsage);
+    return vb_batch::Run(o);
+  });
 }

@@ -196,18 +196,9 @@ int Run(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
+  return vb::io::ToolMain("vb_gen", [&] {
     const Options o = ParseArgs(argc, argv);
-    if (o.help) {
-      std::fputs(kUsage, stdout);
-      return 0;
-    }
+    if (o.help) return vb::io::PrintUsage(kUsage);
     return Run(o);
-  } catch (const vb::InputError& e) {
-    std::fprintf(stderr, "vb_gen: %s\n", e.what());
-    return 2;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "vb_gen: error: %s\n", e.what());
-    return 1;
-  }
+  });
 }

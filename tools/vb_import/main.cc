@@ -124,18 +124,9 @@ int Run(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
+  return vb::io::ToolMain("vb_import", [&] {
     const Options o = ParseArgs(argc, argv);
-    if (o.help) {
-      std::fputs(kUsage, stdout);
-      return 0;
-    }
+    if (o.help) return vb::io::PrintUsage(kUsage);
     return Run(o);
-  } catch (const vb::InputError& e) {
-    std::fprintf(stderr, "vb_import: %s\n", e.what());
-    return 2;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "vb_import: error: %s\n", e.what());
-    return 1;
-  }
+  });
 }

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "common.h"
+#include "io/cli_args.h"
 #include "vb/engine/error.h"
 
 namespace {
@@ -30,23 +31,14 @@ exit codes: 0 ok; 1 internal error; 2 bad input or conflicting shards.
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
+  return vb::io::ToolMain("vb_report", [&] {
     const std::vector<std::string> args(argv + 1, argv + argc);
     for (const std::string& a : args) {
-      if (a == "--help" || a == "-h") {
-        std::fputs(kUsage, stdout);
-        return 0;
-      }
+      if (a == "--help" || a == "-h") return vb::io::PrintUsage(kUsage);
     }
     if (!args.empty() && args[0] == "merge") {
       return vb_report::Merge(std::vector<std::string>(args.begin() + 1, args.end()));
     }
     return vb_report::Report(args);
-  } catch (const vb::InputError& e) {
-    std::fprintf(stderr, "vb_report: error: %s\n", e.what());
-    return 2;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "vb_report: internal error: %s\n", e.what());
-    return 1;
-  }
+  });
 }

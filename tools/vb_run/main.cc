@@ -176,18 +176,9 @@ int Run(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    const Options options = ParseArgs(argc, argv);
-    if (options.help) {
-      std::fputs(kUsage, stdout);
-      return 0;
-    }
-    return Run(options);
-  } catch (const vb::InputError& e) {
-    std::fprintf(stderr, "vb_run: error: %s\n", e.what());
-    return 2;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "vb_run: internal error: %s\n", e.what());
-    return 1;
-  }
+  return vb::io::ToolMain("vb_run", [&] {
+    const Options o = ParseArgs(argc, argv);
+    if (o.help) return vb::io::PrintUsage(kUsage);
+    return Run(o);
+  });
 }
