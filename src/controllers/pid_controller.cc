@@ -26,6 +26,11 @@ void PidController::Reset(const EpisodeContext& context) {
   last_replan_s_ = -1e9;
   steering_ = 0.0;
   replan_count_ = 0;
+  goal_field_.reset();
+  if (context.inflated_obstacles != nullptr) {
+    goal_field_.emplace(*context.inflated_obstacles,
+                        context.inflated_obstacles->CellOf(context.goal_m));
+  }
 }
 
 Command PidController::Update(const Observation& obs) {
@@ -35,10 +40,9 @@ Command PidController::Update(const Observation& obs) {
   // plan keeps the previous path (the original's behaviour).
   if (obs.time_s - last_replan_s_ >= params_.replan_period_s - kReplanTimeTolerance_s) {
     last_replan_s_ = obs.time_s;
-    if (context_.inflated_obstacles != nullptr) {
+    if (goal_field_) {
       ++replan_count_;
-      std::optional<std::vector<Vec2>> plan =
-          terrain::PlanPath(*context_.inflated_obstacles, position_m, context_.goal_m);
+      std::optional<std::vector<Vec2>> plan = goal_field_->PathFrom(position_m);
       if (plan && !plan->empty()) {
         path_m_ = std::move(*plan);
         local_goal_index_ = 0;

@@ -26,6 +26,10 @@ inline double Octile(int dr, int dc) {
   return (hi - lo) + kSqrt2 * lo;
 }
 
+// The 8 neighbour offsets, in the order that breaks ties.
+constexpr int kDr[8] = {-1, -1, -1, 0, 0, 1, 1, 1};
+constexpr int kDc[8] = {-1, 0, 1, -1, 1, -1, 0, 1};
+
 struct OpenEntry {
   double f;
   double h;
@@ -139,8 +143,6 @@ std::optional<std::vector<Cell>> AStar(const OccupancyGrid& grid, const Cell& st
   const double h_start = Octile(goal.row - start.row, goal.col - start.col);
   g[start_index] = 0.0;
   open.push({h_start, h_start, start_index});
-  constexpr int kDr[8] = {-1, -1, -1, 0, 0, 1, 1, 1};
-  constexpr int kDc[8] = {-1, 0, 1, -1, 1, -1, 0, 1};
 
   while (!open.empty()) {
     const OpenEntry top = open.top();
@@ -174,6 +176,80 @@ std::optional<std::vector<Cell>> AStar(const OccupancyGrid& grid, const Cell& st
   for (int i = goal_index; i != -1; i = parent[i]) path.push_back({i / grid.cols, i % grid.cols});
   std::reverse(path.begin(), path.end());
   return path;
+}
+
+GoalDistanceField::GoalDistanceField(const OccupancyGrid& grid, const Cell& goal)
+    : grid_(&grid), goal_(goal) {
+  VB_DEMAND(goal.row >= 0 && goal.row < grid.rows && goal.col >= 0 && goal.col < grid.cols);
+  const int n = grid.rows * grid.cols;
+  cost_.assign(static_cast<size_t>(n), std::numeric_limits<double>::infinity());
+  if (grid.Occupied(goal.row, goal.col)) return;  // no path ends inside an obstacle
+  // Dijkstra from the goal over free cells; costs are symmetric, so this is the cost *to* it.
+  std::priority_queue<OpenEntry, std::vector<OpenEntry>, WorseThan> open;
+  const int goal_index = goal.row * grid.cols + goal.col;
+  cost_[goal_index] = 0.0;
+  open.push({0.0, 0.0, goal_index});
+  while (!open.empty()) {
+    const OpenEntry top = open.top();
+    open.pop();
+    if (top.f > cost_[top.index]) continue;  // superseded entry
+    const int r = top.index / grid.cols;
+    const int c = top.index % grid.cols;
+    for (int k = 0; k < 8; ++k) {
+      const int nr = r + kDr[k];
+      const int nc = c + kDc[k];
+      if (nr < 0 || nr >= grid.rows || nc < 0 || nc >= grid.cols) continue;
+      if (grid.Occupied(nr, nc)) continue;
+      const int ni = nr * grid.cols + nc;
+      const double nd = top.f + ((kDr[k] != 0 && kDc[k] != 0) ? kSqrt2 : 1.0);
+      if (nd < cost_[ni]) {
+        cost_[ni] = nd;
+        open.push({nd, 0.0, ni});
+      }
+    }
+  }
+}
+
+double GoalDistanceField::CostToGoal(const Cell& cell) const {
+  return cost_[static_cast<size_t>(cell.row) * grid_->cols + cell.col];
+}
+
+std::optional<std::vector<Cell>> GoalDistanceField::PathFrom(const Cell& start) const {
+  const OccupancyGrid& grid = *grid_;
+  VB_DEMAND(start.row >= 0 && start.row < grid.rows && start.col >= 0 && start.col < grid.cols);
+  if (start == goal_) return std::vector<Cell>{start};
+  if (grid.Occupied(goal_.row, goal_.col)) return std::nullopt;
+  std::vector<Cell> path{start};
+  Cell at = start;
+  // Steepest descent: each step goes to the free neighbour with the least step + cost-to-goal
+  // (first in neighbour order on ties). From a free cell that is exactly its own cost, so the
+  // path is optimal and the cost falls strictly; the start alone may be occupied (as in AStar).
+  while (!(at == goal_)) {
+    double best = std::numeric_limits<double>::infinity();
+    Cell next = at;
+    for (int k = 0; k < 8; ++k) {
+      const Cell nb{at.row + kDr[k], at.col + kDc[k]};
+      if (nb.row < 0 || nb.row >= grid.rows || nb.col < 0 || nb.col >= grid.cols) continue;
+      const double d = ((kDr[k] != 0 && kDc[k] != 0) ? kSqrt2 : 1.0) + CostToGoal(nb);
+      if (d < best) {
+        best = d;
+        next = nb;
+      }
+    }
+    if (!std::isfinite(best)) return std::nullopt;  // cut off from the goal
+    path.push_back(next);
+    at = next;
+  }
+  return path;
+}
+
+std::optional<std::vector<Vec2>> GoalDistanceField::PathFrom(const Vec2& start_m) const {
+  const auto cells = PathFrom(grid_->CellOf(start_m));
+  if (!cells) return std::nullopt;
+  std::vector<Vec2> path_m;
+  path_m.reserve(cells->size());
+  for (const Cell& cell : *cells) path_m.push_back(grid_->CenterOf(cell));
+  return path_m;
 }
 
 std::optional<std::vector<Vec2>> PlanPath(const OccupancyGrid& inflated, const Vec2& start_m,

@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include "vb/engine/rng.h"
+
 namespace vb::terrain {
 namespace {
 
@@ -209,6 +211,52 @@ TEST(AStarTest, DeterministicTieBreak) {
     ASSERT_EQ(again->size(), first->size());
     for (size_t k = 0; k < first->size(); ++k) EXPECT_EQ((*again)[k], (*first)[k]);
   }
+}
+
+// The goal distance field gives paths exactly as cheap as A*'s (both optimal) from every start,
+// on random grids with many obstacles; both agree on what is unreachable; paths are valid.
+TEST(GoalDistanceFieldTest, PathsAsCheapAsAStarOnRandomGrids) {
+  Rng rng(7);
+  for (int trial = 0; trial < 20; ++trial) {
+    OccupancyGrid g = EmptyGrid(40, 50);
+    for (uint8_t& v : g.occupied) v = rng.Uniform(0.0, 1.0) < 0.3 ? 1 : 0;
+    const Cell goal{rng.UniformInt(0, 39), rng.UniformInt(0, 49)};
+    const GoalDistanceField field(g, goal);
+    for (int k = 0; k < 25; ++k) {
+      const Cell start{rng.UniformInt(0, 39), rng.UniformInt(0, 49)};
+      const auto a = AStar(g, start, goal);
+      const auto f = field.PathFrom(start);
+      ASSERT_EQ(a.has_value(), f.has_value()) << "trial " << trial << " start " << start.row
+                                              << "," << start.col;
+      if (!a) continue;
+      EXPECT_NEAR(PathCost(*f), PathCost(*a), 1e-9);
+      EXPECT_EQ(f->front(), start);
+      EXPECT_EQ(f->back(), goal);
+      for (size_t i = 1; i < f->size(); ++i) EXPECT_FALSE(g.Occupied((*f)[i].row, (*f)[i].col));
+      if (!g.Occupied(start.row, start.col)) EXPECT_NEAR(field.CostToGoal(start), PathCost(*f), 1e-9);
+    }
+  }
+}
+
+TEST(GoalDistanceFieldTest, UnreachableOccupiedGoalAndStartInsideObstacle) {
+  const OccupancyGrid wall = GridFromText({
+      "...#...",
+      "...#...",
+      "...#...",
+  });
+  EXPECT_FALSE(GoalDistanceField(wall, {1, 6}).PathFrom(Cell{1, 0}));
+  EXPECT_FALSE(GoalDistanceField(wall, {1, 3}).PathFrom(Cell{1, 0}));  // goal occupied
+  EXPECT_TRUE(std::isinf(GoalDistanceField(wall, {1, 6}).CostToGoal({1, 0})));
+  const OccupancyGrid block = GridFromText({
+      ".....",
+      ".###.",
+      ".###.",
+      ".....",
+  });
+  const auto path = GoalDistanceField(block, {3, 4}).PathFrom(Cell{1, 2});
+  ASSERT_TRUE(path);
+  EXPECT_EQ(path->front(), (Cell{1, 2}));
+  EXPECT_NEAR(PathCost(*path), PathCost(*AStar(block, {1, 2}, {3, 4})), 1e-9);
 }
 
 TEST(PlanPathTest, WorldCoordinatesStartToGoal) {

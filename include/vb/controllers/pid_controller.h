@@ -3,9 +3,11 @@
 // clamped to [-1, 1]; throttle/brake from a proportional speed controller (kp 1, 4 m/s).
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include "vb/controllers/controller.h"
+#include "vb/terrain/grid_planner.h"
 
 namespace vb::controllers {
 
@@ -33,6 +35,7 @@ class PidController : public Controller {
  private:
   PidParams params_;
   EpisodeContext context_;
+  std::optional<terrain::GoalDistanceField> goal_field_;  // the trial's planner (static goal)
   std::vector<Vec2> path_m_;
   size_t local_goal_index_ = 0;
   double last_replan_s_ = -1e9;

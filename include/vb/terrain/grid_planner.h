@@ -48,6 +48,29 @@ OccupancyGrid Inflate(const OccupancyGrid& grid, int radius_cells);
 std::optional<std::vector<Cell>> AStar(const OccupancyGrid& grid, const Cell& start,
                                        const Cell& goal);
 
+// Cost-to-goal of every cell (8-connected, diagonal sqrt(2): A*'s metric), computed once by
+// Dijkstra from the goal. The path followers replan at 10 Hz from wherever the vehicle is to a
+// fixed goal over a static grid; reading a path off this field by steepest descent is as optimal
+// as an A* search but costs O(path length) instead of a search (profiled: A* was up to a quarter
+// of the step time on dense worlds). Equal-cost routes may be broken differently than AStar's.
+// The grid must outlive the field.
+class GoalDistanceField {
+ public:
+  GoalDistanceField(const OccupancyGrid& grid, const Cell& goal);
+  // Infinity for occupied cells and cells cut off from the goal.
+  double CostToGoal(const Cell& cell) const;
+  // The same contract as AStar(grid, start, goal): both ends included, nullopt if unreachable,
+  // an occupied start may step to a free neighbour.
+  std::optional<std::vector<Cell>> PathFrom(const Cell& start) const;
+  // World coordinates (cell centres), as PlanPath.
+  std::optional<std::vector<Vec2>> PathFrom(const Vec2& start_m) const;
+
+ private:
+  const OccupancyGrid* grid_;
+  Cell goal_;
+  std::vector<double> cost_;  // row-major
+};
+
 // Convenience: plan in world coordinates; path points are cell centres, start to goal.
 std::optional<std::vector<Vec2>> PlanPath(const OccupancyGrid& inflated, const Vec2& start_m,
                                           const Vec2& goal_m);
