@@ -1,5 +1,5 @@
 // Whole-trial speed of the HMMWV with the PID system over a rigid world (default
-// tasks/env000.yaml: high elevation, dense obstacles), all start/goal pairs, repeated RUNS times.
+// tasks/env008.yaml: high elevation, dense obstacles, rigid), all start/goal pairs, repeated RUNS times.
 // Reports per run the real-time factor (simulated s / wall s over all pairs, setup included) and
 // the median over runs, plus the median step-time breakdown from the runner's optional timing
 // hook (controller, vehicle synchronise = suspension + powertrain + tire contact, Bullet step,
@@ -30,7 +30,7 @@ double Median(std::vector<double> v) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const std::string task_path = argc > 1 ? argv[1] : VB_SOURCE_DIR "/tasks/env000.yaml";
+  const std::string task_path = argc > 1 ? argv[1] : VB_SOURCE_DIR "/tasks/env008.yaml";
   const int runs = argc > 2 ? std::atoi(argv[2]) : 5;
   const std::string vehicle = argc > 3 ? argv[3] : "hmmwv";
   const double step_s = argc > 4 ? std::atof(argv[4]) : 0.005;
