@@ -1,7 +1,9 @@
-// Steady low-speed turning of the HMMWV on the original's soils (sand, mud, snow) against flat
-// rigid ground: the lateral (cornering) side of the SCM wheel contact, which the soil bin and
-// the straight-line tests do not exercise (docs/validation.md, "Soil", turning).
-//  - Radius: the steady circle radius of the reference point on soil vs on rigid ground (which
+// The lateral (cornering) side of the SCM wheel contact on the original's soils (sand, mud,
+// snow), which the drawbar-pull bin and the straight-line tests do not exercise (docs/soil.md
+// "Cornering", docs/validation.md "Soil", turning).
+//  - Single wheel at a slip angle (the soil bin rig): side force vs Wong's lateral closed form,
+//    and how drive slip takes it away (combined slip).
+//  - HMMWV steady low-speed circles, soil vs flat rigid ground. Radius: the steady circle radius of the reference point on soil vs on rigid ground (which
 //    itself matches the steering geometry, test/validation/vehicle_turning_test.cc).
 //  - Force balance: the horizontal soil force summed over the four wheels, resolved towards the
 //    circle's centre, vs the centripetal force m v^2 / R of the whole vehicle.
@@ -69,7 +71,7 @@ struct Circle {
   double drive_slip = 0.0;        // largest driving slip of the four wheels, time mean
 };
 
-// The HMMWV started at rest at (0, -R0) facing +x on a flat 96 m world of one surface, driven
+// The HMMWV started at rest at (0, -15) facing +x on a flat 96 m world of one surface, driven
 // with a fixed steering input and the speed controller; averages over the last `window_s`.
 Circle SteadyTurn(SurfaceClass surface, double steering, double speed_mps, double seconds,
                   double window_s) {
