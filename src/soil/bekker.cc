@@ -66,4 +66,13 @@ double DrawbarPullWong(const SoilParams& s, double r_m, double b_m, double load_
   return thrust - CompactionResistance(s, b_m, z0);
 }
 
+double LateralForceWong(const SoilParams& s, double r_m, double b_m, double load_n,
+                        double slip_angle_rad) {
+  const double z0 = WheelSinkageBekker(s, r_m, b_m, load_n);
+  const double l = std::sqrt(2.0 * r_m * z0);
+  const double jl = std::tan(slip_angle_rad) * l;  // side shear displacement at the rear end
+  const double mobilised = jl > 0.0 ? 1.0 - s.janosi_shear_m / jl * (1.0 - std::exp(-jl / s.janosi_shear_m)) : 0.0;
+  return (b_m * l * s.cohesion_pa + load_n * std::tan(s.friction_angle_rad)) * mobilised;
+}
+
 }  // namespace vb::soil

@@ -40,7 +40,9 @@ WheelRigResult RunWheelRig(const SoilConfig& config, const WheelRigSpec& spec) {
 
   WheelSoilInput in;
   in.wheel_id = 0;
-  in.axis_W = Vec3::UnitY();
+  // heading h = (cos a, sin a, 0) (turned left from the towing direction +x), axis z x h
+  const double ca = std::cos(spec.slip_angle_rad), sa = std::sin(spec.slip_angle_rad);
+  in.axis_W = Vec3(-sa, ca, 0.0);
   in.radius_m = r;
   in.width_m = spec.width_m;
   in.mass_kg = mass;
@@ -56,10 +58,10 @@ WheelRigResult RunWheelRig(const SoilConfig& config, const WheelRigSpec& spec) {
   for (long k = 0; k < settle_steps + travel_steps; ++k) {
     const bool towing = k >= settle_steps;
     const double v = towing ? spec.speed_mps : 0.0;
-    const double omega = towing ? v / (r * (1.0 - spec.slip)) : 0.0;
+    const double omega = towing ? v * ca / (r * (1.0 - spec.slip)) : 0.0;
     in.center_W = Vec3(x, 0.0, z);
     in.velocity_W = Vec3(v, 0.0, vz);
-    in.angular_velocity_W = Vec3(0.0, omega, 0.0);
+    in.angular_velocity_W = omega * in.axis_W;
     const WheelSoilOutput out = soil.WheelContact(in, dt);
     soil.EndStep(dt);
     // Semi-implicit Euler of the free vertical motion (as the physics engine integrates). The
@@ -74,7 +76,8 @@ WheelRigResult RunWheelRig(const SoilConfig& config, const WheelRigSpec& spec) {
       ++n_avg;
       res.sinkage_m += out.sinkage_m;
       res.drawbar_pull_n += out.force_W.x();
-      res.drive_torque_nm += -out.torque_W.y();
+      res.lateral_force_n += out.force_W.dot(in.axis_W);
+      res.drive_torque_nm += -out.torque_W.dot(in.axis_W);
       res.normal_force_n += out.force_W.z();
       res.max_vertical_speed_mps = std::max(res.max_vertical_speed_mps, std::abs(vz));
     }
@@ -82,6 +85,7 @@ WheelRigResult RunWheelRig(const SoilConfig& config, const WheelRigSpec& spec) {
   if (n_avg > 0) {
     res.sinkage_m /= n_avg;
     res.drawbar_pull_n /= n_avg;
+    res.lateral_force_n /= n_avg;
     res.drive_torque_nm /= n_avg;
     res.normal_force_n /= n_avg;
   }

@@ -31,4 +31,11 @@ double CompactionResistance(const SoilParams& s, double b_m, double z0_m);
 // l = sqrt(2 r z0) (front arc), A = b l.
 double DrawbarPullWong(const SoilParams& s, double r_m, double b_m, double load_n, double slip);
 
+// Lateral (cornering) force of a free-rolling rigid wheel at slip angle alpha in (0, pi/2), same
+// contact patch: the side shear displacement grows as j_y = x tan(alpha) along the contact, so
+// F_y = (A c + W tan(phi)) [1 - K / (l tan a) (1 - exp(-l tan a / K))] (Wong, "Theory of Ground
+// Vehicles", lateral force of tires on soil, shear part only: no side-wall bulldozing term).
+double LateralForceWong(const SoilParams& s, double r_m, double b_m, double load_n,
+                        double slip_angle_rad);
+
 }  // namespace vb::soil
