@@ -267,6 +267,26 @@ TEST_F(VbBatchTest, ChangedTaskIsReportedNotMixed) {
   EXPECT_EQ(other.exit_code, 2) << other.output;
 }
 
+// A vehicle or soil file edited after a batch (same names, other content) is a settings change:
+// resuming into the old directory is refused rather than mixing parameter sets.
+TEST_F(VbBatchTest, EditedParameterFileIsRefused) {
+  const fs::path data = root_ / "data";
+  fs::copy(VB_SOURCE_DIR "/data", data, fs::copy_options::recursive);
+  const fs::path dir = root_ / "edited";
+  const std::string cmd = "VB_DATA_DIR=" + data.string() + " " + kBatch + " " VB_SOURCE_DIR
+                          "/tasks/env042.yaml --pairs 1 --time-limit 2 --quiet --out " +
+                          dir.string();
+  ASSERT_EQ(Sh(cmd).exit_code, 0);
+  EXPECT_EQ(Sh(cmd).exit_code, 0);  // unchanged: resumes (nothing to do)
+  std::ofstream(data / "soils/verti_bench.yaml", std::ios::app) << "# edited\n";
+  const Outcome soil = Sh(cmd);
+  EXPECT_EQ(soil.exit_code, 2) << soil.output;
+  EXPECT_NE(soil.output.find("settings"), std::string::npos) << soil.output;
+  const std::string json = ReadFile(dir / "trials/env042_p1_s0_hmmwv_pid.json");
+  EXPECT_NE(json.find("\"vehicle_fnv1a64\": \""), std::string::npos) << json;
+  EXPECT_NE(json.find("\"soil\": \"\""), std::string::npos) << json;  // rigid world: no soil
+}
+
 TEST_F(VbBatchTest, KilledWorkerBecomesCrashedTrialAndIsRetried) {
   const fs::path dir = root_ / "crash";
   const std::string cmd = kBatch + " " VB_SOURCE_DIR "/tasks/env042.yaml --pairs 0 "

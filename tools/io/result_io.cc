@@ -117,6 +117,22 @@ uint64_t Fnv1a64(const std::string& bytes, uint64_t hash) {
   return hash;
 }
 
+std::string FileFnv1a64Hex(const std::string& path) {
+  bool ok = false;
+  const std::string bytes = ReadBytes(path, &ok);
+  if (!ok) throw InputError(path, 0, "", "cannot read the file to hash it");
+  char hex[17];
+  std::snprintf(hex, sizeof(hex), "%016" PRIx64, Fnv1a64(bytes));
+  return hex;
+}
+
+void RecordParameterFiles(const std::string& vehicle_file, const std::string& soil_name,
+                          const std::string& soil_file, Provenance* p) {
+  p->vehicle_fnv1a64 = FileFnv1a64Hex(vehicle_file);
+  p->soil = soil_file.empty() ? "" : soil_name;
+  p->soil_fnv1a64 = soil_file.empty() ? "" : FileFnv1a64Hex(soil_file);
+}
+
 Provenance MakeProvenance(const terrain::TaskSpec& task, const runner::TrialSpec& spec) {
   Provenance p;
   p.vb_version = VB_VERSION;
@@ -160,6 +176,9 @@ void WriteTrialJson(const runner::TrialResult& r, const std::string& path,
   prov.Str("task_file", provenance.task_file);
   prov.Str("task_fnv1a64", provenance.task_fnv1a64);
   prov.Str("vehicle", provenance.vehicle);
+  prov.Str("vehicle_fnv1a64", provenance.vehicle_fnv1a64);
+  prov.Str("soil", provenance.soil);
+  prov.Str("soil_fnv1a64", provenance.soil_fnv1a64);
   prov.Str("system", provenance.system);
   prov.UInt("seed", provenance.seed);
   prov.Str("host", provenance.host);

@@ -23,6 +23,11 @@ struct Provenance {
   // identifies the exact world even if the file is edited in place.
   std::string task_fnv1a64;
   std::string vehicle;
+  // FNV-1a of the vehicle file and of the soil file (empty when the task has no soil), so a
+  // result names the exact parameters it was made with, not only their names.
+  std::string vehicle_fnv1a64;
+  std::string soil;
+  std::string soil_fnv1a64;
   std::string system;
   uint64_t seed = 0;
   std::string host;
@@ -35,6 +40,12 @@ Provenance MakeProvenance(const terrain::TaskSpec& task, const runner::TrialSpec
 // 64-bit FNV-1a of `bytes`, continuing from `hash` (start with kFnv1a64Offset).
 constexpr uint64_t kFnv1a64Offset = 0xcbf29ce484222325ull;
 uint64_t Fnv1a64(const std::string& bytes, uint64_t hash = kFnv1a64Offset);
+// Records the parameter files a trial used: the vehicle file, and the soil set's name and file
+// when the task needed soil (soil_file empty: none).
+void RecordParameterFiles(const std::string& vehicle_file, const std::string& soil_name,
+                          const std::string& soil_file, Provenance* p);
+// FNV-1a of a file's bytes as 16 hex digits; InputError naming the file if it cannot be read.
+std::string FileFnv1a64Hex(const std::string& path);
 
 // Standard file names of a trial's outputs: <task>_p<K>_s<seed>_<vehicle>_<system>.
 std::string TrialFileStem(const runner::TrialResult& result);

@@ -21,8 +21,8 @@
 #include <thread>
 #include <vector>
 
-#include "io/cli_args.h"
 #include "io/batch_io.h"
+#include "io/cli_args.h"
 #include "io/result_io.h"
 #include "io/yaml_strict.h"
 #include "options.h"
@@ -310,8 +310,14 @@ int Run(const Options& o) {
   const std::vector<vb::batch::TrialKey> all = vb::batch::ExpandMatrix(spec);
   const std::vector<vb::batch::TrialKey> mine = vb::batch::SelectShard(all, shard);
   const int jobs = o.jobs > 0 ? o.jobs : DefaultJobs();
-  const std::string settings = "time_limit_s=" + vb::io::FormatDouble(o.time_limit_s) +
-                               " traj_every=" + std::to_string(o.traj_every) + " soil=" + o.soil;
+  // Everything besides the matrix that changes results: rules, and the parameter files by
+  // content (an edited vehicle or soil file must not mix with results made before the edit).
+  std::string settings = "time_limit_s=" + vb::io::FormatDouble(o.time_limit_s) +
+                         " traj_every=" + std::to_string(o.traj_every) + " soil=" + o.soil + ":" +
+                         vb::io::FileFnv1a64Hex(DataDir() + "/soils/" + o.soil + ".yaml");
+  for (const std::string& v : spec.vehicles) {
+    settings += " vehicle=" + v + ":" + vb::io::FileFnv1a64Hex(DataDir() + "/vehicles/" + v + ".yaml");
+  }
   const int lock_fd = PrepareOutputDir(o, settings);
   const vb::io::Provenance build = ProvenanceFor(spec.tasks.front(), all.front());
   const Plan plan = PlanResume(o, spec, mine, build);

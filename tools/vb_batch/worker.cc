@@ -28,8 +28,9 @@ namespace vb_batch {
     }
     try {
       const vb::terrain::TaskSpec task = vb::io::LoadTask(t.path);
-      const vb::vehicles::VehicleParams params =
-          vb::io::LoadVehicle(DataDir() + "/vehicles/" + key.vehicle + ".yaml");
+      const std::string vehicle_file = DataDir() + "/vehicles/" + key.vehicle + ".yaml";
+      const std::string soil_file = DataDir() + "/soils/" + o.soil + ".yaml";
+      const vb::vehicles::VehicleParams params = vb::io::LoadVehicle(vehicle_file);
       vb::runner::TrialSpec spec;
       spec.pair_index = key.pair;
       spec.seed = key.seed;
@@ -39,12 +40,14 @@ namespace vb_batch {
       rules.time_limit_s = o.time_limit_s;
       rules.trajectory_every_n_steps = o.traj_every;
       const std::optional<vb::soil::SoilConfig> soil =
-          vb::io::LoadSoilIfNeeded(task, DataDir() + "/soils/" + o.soil + ".yaml");
+          vb::io::LoadSoilIfNeeded(task, soil_file);
       const vb::runner::TrialResult r =
           vb::runner::RunTrial(task, params, spec, rules, soil ? &*soil : nullptr);
       // Trajectory first: a record's presence implies its trajectory is complete.
       vb::io::WriteTrajectoryCsv(r, stem_path + "_traj.csv");
-      vb::io::WriteTrialJson(r, stem_path + ".json", vb::io::MakeProvenance(task, spec));
+      vb::io::Provenance provenance = vb::io::MakeProvenance(task, spec);
+      vb::io::RecordParameterFiles(vehicle_file, o.soil, soil ? soil_file : "", &provenance);
+      vb::io::WriteTrialJson(r, stem_path + ".json", provenance);
     } catch (const vb::InputError& e) {
       vb::io::WriteUnrunTrialJson(stem_path + ".json", t.name, key.pair, ProvenanceFor(t, key),
                                   "error", e.what());

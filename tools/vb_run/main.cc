@@ -117,12 +117,13 @@ int Run(const Options& o) {
                          "unknown system '" + o.system + "'; valid: " + vb::io::JoinNames(systems));
   }
   const vb::terrain::TaskSpec task = vb::io::LoadTask(o.task_path);
+  const std::string vehicle_file = data_dir + "/vehicles/" + o.vehicle + ".yaml";
   const vb::vehicles::VehicleParams params =
-      vb::io::LoadVehicle(data_dir + "/vehicles/" + o.vehicle + ".yaml");
+      vb::io::LoadVehicle(vehicle_file);
 
   // Soil parameters only when the task needs them (a rigid task never reads the soil file).
-  const std::optional<vb::soil::SoilConfig> soil =
-      vb::io::LoadSoilIfNeeded(task, data_dir + "/soils/" + o.soil + ".yaml");
+  const std::string soil_file = data_dir + "/soils/" + o.soil + ".yaml";
+  const std::optional<vb::soil::SoilConfig> soil = vb::io::LoadSoilIfNeeded(task, soil_file);
 
   std::vector<int> pairs;
   if (o.pair == "all") {
@@ -149,7 +150,9 @@ int Run(const Options& o) {
     spec.vehicle = o.vehicle;
     vb::runner::TrialResult r = vb::runner::RunTrial(task, params, spec, rules, soil ? &*soil : nullptr);
     const std::string stem = out_dir + "/" + vb::io::TrialFileStem(r);
-    vb::io::WriteTrialJson(r, stem + ".json", vb::io::MakeProvenance(task, spec));
+    vb::io::Provenance provenance = vb::io::MakeProvenance(task, spec);
+    vb::io::RecordParameterFiles(vehicle_file, o.soil, soil ? soil_file : "", &provenance);
+    vb::io::WriteTrialJson(r, stem + ".json", provenance);
     vb::io::WriteTrajectoryCsv(r, stem + "_traj.csv");
     ++counts[static_cast<int>(r.status)];
     if (!o.quiet) {
