@@ -5,8 +5,10 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <optional>
 
 #include "vb/engine/error.h"
+#include "vb/terrain/scale.h"
 
 namespace vb::io {
 
@@ -36,6 +38,14 @@ double ArgReader::NumberValue(bool positive) {
   const double v = ParseNonNegative(flag, Value());
   if (positive && !(v > 0.0)) throw InputError("", 0, flag, "must be > 0");
   return v;
+}
+
+double ArgReader::ScaleValue() {
+  const std::string flag = arg_;
+  const std::string text = Value();
+  const std::optional<double> f = terrain::ParseScaleFactor(text);
+  if (!f) throw InputError("", 0, flag, "'" + text + "' is not a factor > 0 (e.g. 1/6, 0.1)");
+  return *f;
 }
 
 void ArgReader::Unknown() const { throw InputError("", 0, arg_, "unknown option (see --help)"); }

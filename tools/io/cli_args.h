@@ -33,6 +33,8 @@ class ArgReader {
   uint64_t U64Value(uint64_t lo = 0, uint64_t hi = UINT64_MAX);
   // Finite number >= 0 (> 0 when positive is set).
   double NumberValue(bool positive = false);
+  // A world scale factor: "1/6", "1/10", "0.5", "1" (> 0).
+  double ScaleValue();
   // Rejects the current argument as an unknown option.
   [[noreturn]] void Unknown() const;
 

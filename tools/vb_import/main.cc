@@ -70,10 +70,7 @@ Options ParseArgs(int argc, char** argv) {
         throw vb::InputError("", 0, a, "must be a non-empty file stem without '/'");
       }
     } else if (a == "--scale") {
-      const std::string text = args.Value();
-      const std::optional<double> f = vb::terrain::ParseScaleFactor(text);
-      if (!f) throw vb::InputError("", 0, a, "'" + text + "' is not a factor > 0 (e.g. 1/6, 0.1)");
-      o.scale = *f;
+      o.scale = args.ScaleValue();
     } else if (a == "--picture") {
       o.picture = args.Value();
     } else {
