@@ -130,4 +130,13 @@ void ComputeWheelTorques(const VehicleParams& p, double throttle,
   }
 }
 
+double DrivelineInertiaPerDrivenWheel(const DrivelineParams& d, int driven_axles) {
+  if (driven_axles <= 0) return 0.0;
+  const double fast = d.driveshaft_inertia_kgm2 + d.central_box_inertia_kgm2 +
+                      driven_axles * d.axle_shaft_inertia_kgm2;
+  const double reflected =
+      fast / (d.conical_ratio * d.conical_ratio) + driven_axles * d.axle_box_inertia_kgm2;
+  return reflected / (2.0 * driven_axles);
+}
+
 }  // namespace vb::vehicles

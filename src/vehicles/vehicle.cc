@@ -110,7 +110,11 @@ Vehicle::Vehicle(const VehicleParams& params, const terrain::Terrain& terrain, c
   base.pose_W.position = pose_W.position + pose_W.rotation * ch.com_B;
   base.boxes.push_back({ch.collision_box_center_B - ch.com_B, ch.collision_box_size_m / 2.0});
 
-  // wheels, axle-major, left then right
+  // wheels, axle-major, left then right; driven wheels also carry the driveline's shafts
+  const int driven_axles = static_cast<int>(std::count_if(
+      params_.axles.begin(), params_.axles.end(), [](const AxleParams& a) { return a.driven; }));
+  const double driveline_inertia_per_wheel =
+      DrivelineInertiaPerDrivenWheel(params_.driveline, driven_axles);
   std::vector<engine::MultiBodyLinkSpec> links;
   double steered_x_sum = 0.0, fixed_x_sum = 0.0;
   int n_steered = 0, n_fixed = 0;
@@ -169,6 +173,7 @@ Vehicle::Vehicle(const VehicleParams& params, const terrain::Terrain& terrain, c
       wheel.axis_P = Vec3::UnitY();
       wheel.mass_kg = params_.wheel.mass_kg;
       wheel.inertia_kgm2 = params_.wheel.inertia_kgm2;
+      if (axle.driven) wheel.inertia_kgm2.y() += driveline_inertia_per_wheel;
       wheel.has_cylinder = true;
       wheel.cylinder.radius_m = params_.wheel.radius_m;
       wheel.cylinder.half_width_m = params_.wheel.width_m / 2.0;

@@ -97,6 +97,10 @@ driveline:
   lock_axle_differentials: false
   lock_central_differential: true
   lock_torque_limit_nm: 1000.0
+  driveshaft_inertia_kgm2: 0.5
+  central_box_inertia_kgm2: 0.6
+  axle_shaft_inertia_kgm2: 0.5
+  axle_box_inertia_kgm2: 0.6
 )";
 
 class VehicleIoTest : public ::testing::Test {

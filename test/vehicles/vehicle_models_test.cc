@@ -81,6 +81,10 @@ TEST(VehicleData, TmeasyVariantMatchesHmmwvExceptTire) {
   EXPECT_EQ(a.transmission.forward_ratios, b.transmission.forward_ratios);
   EXPECT_EQ(a.transmission.min_time_in_gear_s, b.transmission.min_time_in_gear_s);
   EXPECT_EQ(a.driveline.lock_torque_limit_nm, b.driveline.lock_torque_limit_nm);
+  EXPECT_EQ(a.driveline.driveshaft_inertia_kgm2, b.driveline.driveshaft_inertia_kgm2);
+  EXPECT_EQ(a.driveline.central_box_inertia_kgm2, b.driveline.central_box_inertia_kgm2);
+  EXPECT_EQ(a.driveline.axle_shaft_inertia_kgm2, b.driveline.axle_shaft_inertia_kgm2);
+  EXPECT_EQ(a.driveline.axle_box_inertia_kgm2, b.driveline.axle_box_inertia_kgm2);
   EXPECT_EQ(a.tire.model, TireModel::kRigid);
   EXPECT_EQ(b.tire.model, TireModel::kTMeasy);
 }
@@ -107,6 +111,28 @@ TEST(ShiftLogic, HoldTimeAndGroundSpeedUpshift) {
   tr.upshift_on_ground_speed = false;
   UpdateGear(tr, 100.0 * rpm, 1.0, &spin);
   EXPECT_EQ(spin.gear, 2);
+}
+
+}  // namespace
+}  // namespace vb::vehicles
+
+namespace vb::vehicles {
+namespace {
+
+// HMMWV_Driveline4WD: driveshaft 0.5, central box 0.6, two propeller shafts 0.5, two axle boxes
+// 0.6 kg m^2, conical ratio 0.2: (0.5 + 0.6 + 2 * 0.5) / 0.04 + 2 * 0.6 = 53.7 over 4 wheels.
+TEST(Driveline, ShaftInertiaReflectedThroughTheConicalGears) {
+  DrivelineParams d;
+  d.conical_ratio = 0.2;
+  d.driveshaft_inertia_kgm2 = 0.5;
+  d.central_box_inertia_kgm2 = 0.6;
+  d.axle_shaft_inertia_kgm2 = 0.5;
+  d.axle_box_inertia_kgm2 = 0.6;
+  EXPECT_NEAR(DrivelineInertiaPerDrivenWheel(d, 2), 53.7 / 4.0, 1e-12);
+  // one driven axle: (0.5 + 0.6 + 0.5) / 0.04 + 0.6 = 40.6 over 2 wheels
+  EXPECT_NEAR(DrivelineInertiaPerDrivenWheel(d, 1), 40.6 / 2.0, 1e-12);
+  EXPECT_EQ(DrivelineInertiaPerDrivenWheel(d, 0), 0.0);
+  EXPECT_NEAR(DrivelineInertiaPerDrivenWheel(test::Hmmwv().driveline, 2), 53.7 / 4.0, 1e-12);
 }
 
 }  // namespace

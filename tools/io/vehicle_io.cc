@@ -314,12 +314,18 @@ vehicles::TransmissionParams ReadTransmission(const StrictNode& node) {
 
 vehicles::DrivelineParams ReadDriveline(const StrictNode& node) {
   const StrictMap m = node.AsMap({"conical_ratio", "lock_axle_differentials",
-                                  "lock_central_differential", "lock_torque_limit_nm"});
+                                  "lock_central_differential", "lock_torque_limit_nm",
+                                  "driveshaft_inertia_kgm2", "central_box_inertia_kgm2",
+                                  "axle_shaft_inertia_kgm2", "axle_box_inertia_kgm2"});
   vehicles::DrivelineParams p;
   p.conical_ratio = m.Required("conical_ratio").AsPositive();
   p.lock_axle_differentials = m.Required("lock_axle_differentials").AsBool();
   p.lock_central_differential = m.Required("lock_central_differential").AsBool();
   p.lock_torque_limit_nm = m.Required("lock_torque_limit_nm").AsNonNegative();
+  p.driveshaft_inertia_kgm2 = m.Required("driveshaft_inertia_kgm2").AsNonNegative();
+  p.central_box_inertia_kgm2 = m.Required("central_box_inertia_kgm2").AsNonNegative();
+  p.axle_shaft_inertia_kgm2 = m.Required("axle_shaft_inertia_kgm2").AsNonNegative();
+  p.axle_box_inertia_kgm2 = m.Required("axle_box_inertia_kgm2").AsNonNegative();
   return p;
 }
 

@@ -41,4 +41,9 @@ void ComputeWheelTorques(const VehicleParams& params, double throttle,
                          PowertrainState* state,
                          std::vector<double>* wheel_torques_nm);
 
+// Driveline inertia lumped onto each driven wheel's spin axis (kg m^2): the shafts reflected
+// through the conical gears, shared equally by the driven wheels. Exact when the driven wheels
+// turn at one speed (locked differentials, straight line); an approximation in turns.
+double DrivelineInertiaPerDrivenWheel(const DrivelineParams& d, int driven_axles);
+
 }  // namespace vb::vehicles

@@ -153,6 +153,13 @@ struct DrivelineParams {
   bool lock_axle_differentials = false;
   bool lock_central_differential = false;
   double lock_torque_limit_nm = 0.0;   // clutch torque of a "locked" differential
+  // Rotating inertia of the shafts (Chrono's ChShaftsDriveline4WD): the driveshaft and the
+  // central differential box, one propeller shaft per driven axle (these turn 1/conical_ratio
+  // times faster than the wheels), and one differential box per driven axle (at wheel speed).
+  double driveshaft_inertia_kgm2 = 0.0;
+  double central_box_inertia_kgm2 = 0.0;
+  double axle_shaft_inertia_kgm2 = 0.0;
+  double axle_box_inertia_kgm2 = 0.0;
 };
 
 struct VehicleParams {
