@@ -114,12 +114,7 @@ int main(int argc, char** argv) {
       vb::io::PlotSeries bekker{std::string(Name(c)) + " Bekker", {}, {}, false};
       // The pressure model alone (no shear, no flow) towed slowly: what Bekker's formula describes.
       vb::io::PlotSeries plain_sink{std::string(Name(c)) + " vb p-only", {}, {}, false};
-      vb::soil::SoilConfig plain = config;
-      plain.bulldozing.enabled = false;
-      for (auto& p : plain.classes) {
-        p->friction_angle_rad = 0.0;
-        p->cohesion_pa = 0.0;
-      }
+      const vb::soil::SoilConfig plain = vb::soil::PressureOnly(config);
       vb::soil::WheelRigSpec plain_spec;
       plain_spec.soil = c;
       plain_spec.speed_mps = 0.1;
@@ -163,13 +158,8 @@ int main(int argc, char** argv) {
     std::printf("soil  grid_m  static_m  Bekker_m  err_%%  DP_0.4_N\n");
     for (SurfaceClass c : {SurfaceClass::kSnow, SurfaceClass::kMud, SurfaceClass::kSand}) {
       for (double spacing : {0.1, 0.05, 0.025}) {
-        vb::soil::SoilConfig plain = config;
+        vb::soil::SoilConfig plain = vb::soil::PressureOnly(config);
         plain.grid_spacing_m = spacing;
-        plain.bulldozing.enabled = false;
-        for (auto& s : plain.classes) {
-          s->friction_angle_rad = 0.0;
-          s->cohesion_pa = 0.0;
-        }
         vb::soil::WheelRigSpec spec;
         spec.soil = c;
         spec.speed_mps = 0.0;

@@ -102,4 +102,15 @@ WheelRigResult RunWheelRig(const SoilConfig& config, const WheelRigSpec& spec) {
   return res;
 }
 
+SoilConfig PressureOnly(const SoilConfig& config) {
+  SoilConfig c = config;
+  c.bulldozing.enabled = false;
+  for (auto& s : c.classes) {
+    if (!s) continue;
+    s->friction_angle_rad = 0.0;
+    s->cohesion_pa = 0.0;
+  }
+  return c;
+}
+
 }  // namespace vb::soil

@@ -30,6 +30,21 @@ inline double Octile(int dr, int dc) {
 constexpr int kDr[8] = {-1, -1, -1, 0, 0, 1, 1, 1};
 constexpr int kDc[8] = {-1, 0, 1, -1, 1, -1, 0, 1};
 
+// Calls visit(neighbour_index, step_cost) for each in-grid, unoccupied 8-neighbour of cell
+// `index`, in kDr/kDc order (diagonal steps cost sqrt(2)).
+template <typename Visit>
+void ForEachFreeNeighbour(const OccupancyGrid& grid, int index, Visit&& visit) {
+  const int r = index / grid.cols;
+  const int c = index % grid.cols;
+  for (int k = 0; k < 8; ++k) {
+    const int nr = r + kDr[k];
+    const int nc = c + kDc[k];
+    if (nr < 0 || nr >= grid.rows || nc < 0 || nc >= grid.cols) continue;
+    if (grid.Occupied(nr, nc)) continue;
+    visit(nr * grid.cols + nc, (kDr[k] != 0 && kDc[k] != 0) ? kSqrt2 : 1.0);
+  }
+}
+
 struct OpenEntry {
   double f;
   double h;
@@ -151,24 +166,16 @@ std::optional<std::vector<Cell>> AStar(const OccupancyGrid& grid, const Cell& st
     if (closed[top.index]) continue;
     closed[top.index] = 1;
     if (top.index == goal_index) break;
-    const int r = top.index / grid.cols;
-    const int c = top.index % grid.cols;
-    for (int k = 0; k < 8; ++k) {
-      const int nr = r + kDr[k];
-      const int nc = c + kDc[k];
-      if (nr < 0 || nr >= grid.rows || nc < 0 || nc >= grid.cols) continue;
-      if (grid.Occupied(nr, nc)) continue;
-      const int ni = nr * grid.cols + nc;
-      if (closed[ni]) continue;
-      const double step = (kDr[k] != 0 && kDc[k] != 0) ? kSqrt2 : 1.0;
+    ForEachFreeNeighbour(grid, top.index, [&](int ni, double step) {
+      if (closed[ni]) return;
       const double ng = g[top.index] + step;
       if (ng < g[ni]) {
         g[ni] = ng;
         parent[ni] = top.index;
-        const double h = Octile(goal.row - nr, goal.col - nc);
+        const double h = Octile(goal.row - ni / grid.cols, goal.col - ni % grid.cols);
         open.push({ng + h, h, ni});
       }
-    }
+    });
   }
   if (!closed[goal_index]) return std::nullopt;
 
@@ -193,20 +200,13 @@ GoalDistanceField::GoalDistanceField(const OccupancyGrid& grid, const Cell& goal
     const OpenEntry top = open.top();
     open.pop();
     if (top.f > cost_[top.index]) continue;  // superseded entry
-    const int r = top.index / grid.cols;
-    const int c = top.index % grid.cols;
-    for (int k = 0; k < 8; ++k) {
-      const int nr = r + kDr[k];
-      const int nc = c + kDc[k];
-      if (nr < 0 || nr >= grid.rows || nc < 0 || nc >= grid.cols) continue;
-      if (grid.Occupied(nr, nc)) continue;
-      const int ni = nr * grid.cols + nc;
-      const double nd = top.f + ((kDr[k] != 0 && kDc[k] != 0) ? kSqrt2 : 1.0);
+    ForEachFreeNeighbour(grid, top.index, [&](int ni, double step) {
+      const double nd = top.f + step;
       if (nd < cost_[ni]) {
         cost_[ni] = nd;
         open.push({nd, 0.0, ni});
       }
-    }
+    });
   }
 }
 

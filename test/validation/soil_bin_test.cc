@@ -23,15 +23,7 @@ SoilConfig Config() {
 
 // The closed forms know neither shear on the rim nor material flow: compare the normal-pressure
 // model with those switched off.
-SoilConfig PressureOnly() {
-  SoilConfig c = Config();
-  c.bulldozing.enabled = false;
-  for (auto& s : c.classes) {
-    s->friction_angle_rad = 0.0;
-    s->cohesion_pa = 0.0;
-  }
-  return c;
-}
+SoilConfig PressureOnly() { return soil::PressureOnly(Config()); }
 
 const char* Name(SurfaceClass c) { return c == SurfaceClass::kSnow ? "snow" : c == SurfaceClass::kMud ? "mud" : "sand"; }
 

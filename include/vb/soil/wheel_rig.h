@@ -46,4 +46,8 @@ struct WheelRigResult {
 // Runs the rig on a flat bin of the given soil. `config` supplies the soil and grid parameters.
 WheelRigResult RunWheelRig(const SoilConfig& config, const WheelRigSpec& spec);
 
+// `config` with shear (cohesion, friction angle) and material flow switched off: the normal-
+// pressure model alone, which is what the Bekker closed forms describe.
+SoilConfig PressureOnly(const SoilConfig& config);
+
 }  // namespace vb::soil
