@@ -1,9 +1,10 @@
-// Whole-trial speed of the HMMWV with the PID system over a rigid world (default
-// tasks/env008.yaml: high elevation, dense obstacles, rigid), all start/goal pairs, repeated RUNS times.
-// Reports per run the real-time factor (simulated s / wall s over all pairs, setup included) and
-// the median over runs, plus the median step-time breakdown from the runner's optional timing
-// hook (controller, vehicle synchronise = suspension + powertrain + tire contact, Bullet step,
-// vehicle state read-out, runner bookkeeping, setup). One trial at a time on one core.
+// Whole-trial speed of the HMMWV with the PID system over a world (default tasks/env008.yaml:
+// high elevation, dense obstacles, rigid; deformable worlds get data/soils/verti_bench.yaml),
+// all start/goal pairs, repeated RUNS times. Reports per run the real-time factor (simulated s /
+// wall s over all pairs, setup included) and the median over runs, plus the median step-time
+// breakdown from the runner's optional timing hook (controller, vehicle synchronise = suspension +
+// powertrain + tire contact, soil, Bullet step, vehicle state read-out, runner bookkeeping,
+// setup). One trial at a time on one core.
 // Besides the wall-clock RTF it reports the CPU-time RTF (simulated s / process CPU s): on the
 // shared 2-core machine other jobs stretch wall time, not CPU time.
 //   usage: vb_bench_episode [TASK] [RUNS] [VEHICLE] [STEP_S]
@@ -11,9 +12,11 @@
 #include <ctime>
 #include <cstdio>
 #include <cstdlib>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "io/soil_io.h"
 #include "io/task_io.h"
 #include "io/vehicle_io.h"
 #include "vb/engine/error.h"
@@ -42,10 +45,12 @@ int main(int argc, char** argv) {
     const vb::terrain::TaskSpec task = vb::io::LoadTask(task_path);
     const vb::vehicles::VehicleParams params =
         vb::io::LoadVehicle(VB_SOURCE_DIR "/data/vehicles/" + vehicle + ".yaml");
+    const std::optional<vb::soil::SoilConfig> soil =
+        vb::io::LoadSoilIfNeeded(task, VB_SOURCE_DIR "/data/soils/verti_bench.yaml");
     std::printf("vb_bench_episode %s %d %s %g: %zu pairs x %d runs, PID, step %g s\n",
                 task_path.c_str(), runs, vehicle.c_str(), step_s, task.pairs.size(), runs, step_s);
 
-    std::vector<double> rtf, cpu_rtf, ctrl, sync, step, update, book, setup;
+    std::vector<double> rtf, cpu_rtf, ctrl, sync, soil_us, step, update, book, setup;
     for (int r = 0; r < runs; ++r) {
       vb::runner::StepTimings t;
       vb::runner::EpisodeRules rules;
@@ -58,7 +63,7 @@ int main(int argc, char** argv) {
         vb::runner::TrialSpec spec;
         spec.pair_index = pair;
         spec.vehicle = vehicle;
-        const vb::runner::TrialResult res = vb::runner::RunTrial(task, params, spec, rules);
+        const vb::runner::TrialResult res = vb::runner::RunTrial(task, params, spec, rules, soil ? &*soil : nullptr);
         sim_s += res.sim_time_s;
         wall_s += res.wall_time_s;
         successes += res.status == vb::runner::TrialStatus::kSuccess;
@@ -69,6 +74,7 @@ int main(int argc, char** argv) {
       cpu_rtf.push_back(sim_s / cpu_s);
       ctrl.push_back(t.controller_s * us);
       sync.push_back(t.vehicle_sync_s * us);
+      soil_us.push_back(t.soil_s * us);
       step.push_back(t.physics_step_s * us);
       update.push_back(t.vehicle_update_s * us);
       book.push_back(t.bookkeeping_s * us);
@@ -78,7 +84,8 @@ int main(int argc, char** argv) {
                   r + 1, successes, task.pairs.size(), sim_s, wall_s, cpu_s, rtf.back(),
                   cpu_rtf.back(), t.steps);
     }
-    const double total = Median(ctrl) + Median(sync) + Median(step) + Median(update) + Median(book);
+    const double total = Median(ctrl) + Median(sync) + Median(soil_us) + Median(step) +
+                         Median(update) + Median(book);
     std::printf("median RTF over %d runs: %.1f wall (min %.1f, max %.1f), %.1f CPU\n", runs,
                 Median(rtf), *std::min_element(rtf.begin(), rtf.end()),
                 *std::max_element(rtf.begin(), rtf.end()), Median(cpu_rtf));
@@ -89,6 +96,7 @@ int main(int argc, char** argv) {
     };
     row("controller (PID + path)", Median(ctrl));
     row("vehicle synchronise (susp., powertrain, tires)", Median(sync));
+    if (soil) row("soil (wheel contact, material flow)", Median(soil_us));
     row("Bullet step (multibody, collisions)", Median(step));
     row("vehicle state read-out", Median(update));
     row("runner bookkeeping (checks, metrics, traj.)", Median(book));

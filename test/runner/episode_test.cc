@@ -172,6 +172,38 @@ TEST(EpisodeTest, MixedWorldRunsWithTheSoilSolver) {
   EXPECT_EQ(max_sinkage_dirt, 0.0);
 }
 
+// The step timings (benchmarks) never change a result: the same mixed-world trial with and
+// without them is bit-identical, and the soil's time and counters are reported.
+TEST(EpisodeTest, StepTimingsLeaveResultsUnchangedAndCountTheSoil) {
+  terrain::TaskSpec task = FlatTask();
+  for (int r = 0; r < 16; ++r) {
+    for (int c = 6; c <= 8; ++c) {
+      task.patches.classes[static_cast<size_t>(r * 16 + c)] = terrain::SurfaceClass::kMud;
+      task.patches.friction[static_cast<size_t>(r * 16 + c)] = 0.0;
+    }
+  }
+  const soil::SoilConfig soil = io::LoadSoil(std::string(VB_SOURCE_DIR) + "/data/soils/verti_bench.yaml");
+  EpisodeRules plain;
+  plain.time_limit_s = 8.0;
+  EpisodeRules timed = plain;
+  StepTimings timings;
+  timed.timings = &timings;
+  const TrialResult a = RunTrial(task, Hmmwv(), TrialSpec(), plain, &soil);
+  const TrialResult b = RunTrial(task, Hmmwv(), TrialSpec(), timed, &soil);
+  ASSERT_EQ(a.trajectory.size(), b.trajectory.size());
+  for (size_t i = 0; i < a.trajectory.size(); ++i) {
+    ASSERT_TRUE(a.trajectory[i].position_W == b.trajectory[i].position_W &&
+                a.trajectory[i].wheel_sinkage_m == b.trajectory[i].wheel_sinkage_m)
+        << "first difference at sample " << i;
+  }
+  EXPECT_EQ(timings.steps, static_cast<long>(a.trajectory.size()) - 1);
+  EXPECT_GT(timings.soil_s, 0.0);
+  EXPECT_GE(timings.vehicle_sync_s, 0.0);
+  EXPECT_GT(timings.soil_contact_nodes, 0);
+  EXPECT_GT(timings.soil_tiles, 0);
+  EXPECT_GT(timings.soil_memory_bytes, 0u);
+}
+
 TEST(EpisodeTest, StatusNames) {
   EXPECT_EQ(TrialStatusName(TrialStatus::kSuccess), "success");
   EXPECT_EQ(TrialStatusName(TrialStatus::kRollover), "rollover");

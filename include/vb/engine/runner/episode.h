@@ -23,14 +23,19 @@ std::string_view TrialStatusName(TrialStatus s);
 // into the simulation, so results stay bit-identical with or without it). Seconds, summed.
 struct StepTimings {
   double controller_s = 0.0;      // controller->Update
-  double vehicle_sync_s = 0.0;    // SetInputs + Synchronize (suspension, powertrain, tire and
-                                  // wheel-soil contact)
-  double soil_s = 0.0;            // soil EndStep (material flow, bookkeeping); 0 on rigid worlds
+  double vehicle_sync_s = 0.0;    // SetInputs + Synchronize (suspension, powertrain, tires),
+                                  // without the time spent in the soil
+  double soil_s = 0.0;            // all time in the soil solver: the wheels' soil contact (called
+                                  // from Synchronize) and EndStep; 0 on rigid worlds
   double physics_step_s = 0.0;    // Bullet multibody step (incl. chassis/obstacle collisions)
   double vehicle_update_s = 0.0;  // UpdateState (post-step read-out)
   double bookkeeping_s = 0.0;     // state checks, metrics, trajectory, success/failure rules
   double setup_s = 0.0;           // world, terrain mesh, planner grid, vehicle construction
   long steps = 0;
+  // Soil solver counters of the last trial (zero on rigid worlds).
+  long soil_contact_nodes = 0;    // node contacts summed over all wheel queries
+  long soil_tiles = 0;            // grid tiles allocated
+  size_t soil_memory_bytes = 0;   // tiles + tile index
 };
 
 struct EpisodeRules {
