@@ -11,7 +11,7 @@ GroundTruthMaps::GroundTruthMaps(const TaskSpec& task, int inflation_cells)
       occupancy_(Inflate(RasterizeObstacles(task),
                          inflation_cells < 0 ? PlannerInflationCells(task) : inflation_cells)) {
   const HeightGrid& g = terrain_.grid();
-  for (GridMap* m : {&elevation_, &semantics_, &occupancy_map_}) {
+  for (GridMap* m : {&elevation_, &semantics_, &occupancy_map_, &friction_}) {
     m->rows = g.rows;
     m->cols = g.cols;
     m->resolution_m = terrain_.spacing_x_m();
@@ -25,6 +25,7 @@ GroundTruthMaps::GroundTruthMaps(const TaskSpec& task, int inflation_cells)
       elevation_.values[i] = g.At(r, c);
       semantics_.values[i] = Sample(MapLayer::kSemantics, p);
       occupancy_map_.values[i] = occupancy_.Occupied(r, c) ? 1.0 : 0.0;
+      friction_.values[i] = Sample(MapLayer::kFriction, p);
     }
   }
 }
@@ -34,6 +35,7 @@ const GridMap& GroundTruthMaps::World(MapLayer layer) const {
     case MapLayer::kElevation: return elevation_;
     case MapLayer::kSemantics: return semantics_;
     case MapLayer::kOccupancy: return occupancy_map_;
+    case MapLayer::kFriction: return friction_;
   }
   return elevation_;
 }
@@ -75,18 +77,31 @@ double GroundTruthMaps::Sample(MapLayer layer, const Vec2& p_m) const {
       const Cell cell = occupancy_.CellOf(p_m);
       return occupancy_.Occupied(cell.row, cell.col) ? 1.0 : 0.0;
     }
+    case MapLayer::kFriction: {
+      if (terrain_.patches().classes.empty()) return SurfacePoint().friction;
+      int r = 0, c = 0;
+      terrain_.PatchIndex(p_m.x(), p_m.y(), &r, &c);
+      return IsDeformable(terrain_.patches().ClassAt(r, c)) ? 0.0
+                                                            : terrain_.patches().FrictionAt(r, c);
+    }
   }
   return 0.0;
 }
 
 GridMap GroundTruthMaps::Crop(MapLayer layer, const Vec2& position_m, double yaw_rad,
                               int size_cells, double resolution_m) const {
-  VB_DEMAND(size_cells > 0 && resolution_m > 0.0);
   GridMap out;
-  out.rows = size_cells;
-  out.cols = size_cells;
-  out.resolution_m = resolution_m;
-  out.values.resize(static_cast<size_t>(size_cells) * size_cells);
+  CropInto(layer, position_m, yaw_rad, size_cells, resolution_m, &out);
+  return out;
+}
+
+void GroundTruthMaps::CropInto(MapLayer layer, const Vec2& position_m, double yaw_rad,
+                               int size_cells, double resolution_m, GridMap* out) const {
+  VB_DEMAND(size_cells > 0 && resolution_m > 0.0);
+  out->rows = size_cells;
+  out->cols = size_cells;
+  out->resolution_m = resolution_m;
+  out->values.resize(static_cast<size_t>(size_cells) * size_cells);
   const double centre = 0.5 * (size_cells - 1);
   const double cos_yaw = std::cos(yaw_rad);
   const double sin_yaw = std::sin(yaw_rad);
@@ -96,10 +111,9 @@ GridMap GroundTruthMaps::Crop(MapLayer layer, const Vec2& position_m, double yaw
       const double left = (centre - j) * resolution_m;
       const Vec2 p(position_m.x() + cos_yaw * forward - sin_yaw * left,
                    position_m.y() + sin_yaw * forward + cos_yaw * left);
-      out.values[static_cast<size_t>(i) * size_cells + j] = Sample(layer, p);
+      out->values[static_cast<size_t>(i) * size_cells + j] = Sample(layer, p);
     }
   }
-  return out;
 }
 
 }  // namespace vb::terrain

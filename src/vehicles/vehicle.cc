@@ -352,7 +352,20 @@ void Vehicle::UpdateState() {
     WheelState& ws = state_.wheels[i];
     ws.spin_radps = world_->JointVelocity(body_, c.wheel_link);
     ws.suspension_travel_m = world_->JointPosition(body_, c.carrier_link);
-    ws.center_W = world_->LinkPose(body_, c.wheel_link).position;
+    const Pose wheel = world_->LinkPose(body_, c.wheel_link);
+    ws.center_W = wheel.position;
+    // heading: the wheel plane's horizontal direction (spin axis y crossed with up)
+    const Vec3 axis_W = wheel.rotation * Vec3::UnitY();
+    Vec3 heading_W = axis_W.cross(Vec3::UnitZ());
+    const double heading_norm = heading_W.norm();
+    if (heading_norm > 1e-6) {
+      heading_W /= heading_norm;
+      const double v = world_->LinkPointVelocity(body_, c.wheel_link, wheel.position).dot(heading_W);
+      const double wr = ws.spin_radps * params_.wheel.radius_m;
+      ws.longitudinal_slip = (wr - v) / std::max({std::abs(wr), std::abs(v), 0.1});
+    } else {
+      ws.longitudinal_slip = 0.0;  // wheel on its side: no rolling direction
+    }
   }
 }
 

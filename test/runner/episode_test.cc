@@ -5,10 +5,13 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <memory>
 
 #include "io/soil_io.h"
 #include "io/vehicle_io.h"
 #include "vb/engine/error.h"
+#include "vb/engine/runner/result_digest.h"
 
 namespace vb::runner {
 namespace {
@@ -34,6 +37,8 @@ terrain::TaskSpec FlatTask() {
   t.pairs.push_back(pair);
   return t;
 }
+
+std::string TrialDigestOf(const TrialResult& r) { return TrialDigest(r); }
 
 const vehicles::VehicleParams& Hmmwv() {
   static const vehicles::VehicleParams params =
@@ -202,6 +207,117 @@ TEST(EpisodeTest, StepTimingsLeaveResultsUnchangedAndCountTheSoil) {
   EXPECT_GT(timings.soil_contact_nodes, 0);
   EXPECT_GT(timings.soil_tiles, 0);
   EXPECT_GT(timings.soil_memory_bytes, 0u);
+}
+
+// The Episode API directly: control periods, a reused episode, provisional results, the ways a
+// trial ends from outside.
+
+// Steps a fresh episode of the flat task with full throttle, straight, for `periods` periods.
+TrialResult DriveStraight(Episode* episode, int periods) {
+  episode->Reset(TrialSpec());
+  for (int i = 0; i < periods && !episode->Done(); ++i) episode->Step({1.0, 0.0, 0.0});
+  return episode->Result();
+}
+
+TEST(EpisodeApiTest, ControlPeriodOfTenStepsEqualsTenSingleSteps) {
+  const terrain::TaskSpec task = FlatTask();
+  EpisodeRules fine;
+  EpisodeRules coarse;
+  coarse.control_period_s = 0.05;
+  Episode a(task, Hmmwv(), fine), b(task, Hmmwv(), coarse);
+  EXPECT_EQ(b.steps_per_control_period(), 10);
+  const TrialResult ra = DriveStraight(&a, 300);
+  const TrialResult rb = DriveStraight(&b, 30);
+  EXPECT_EQ(a.physics_steps(), 300);
+  EXPECT_EQ(b.physics_steps(), 300);
+  ASSERT_EQ(ra.trajectory.size(), rb.trajectory.size());
+  EXPECT_TRUE(ra.trajectory.back().position_W == rb.trajectory.back().position_W);
+  EXPECT_EQ(TrialDigestOf(ra), TrialDigestOf(rb));
+}
+
+TEST(EpisodeApiTest, AResetEpisodeRepeatsItsTrialBitForBit) {
+  const terrain::TaskSpec task = FlatTask();
+  Episode episode(task, Hmmwv());
+  const TrialResult first = DriveStraight(&episode, 500);
+  const TrialResult second = DriveStraight(&episode, 500);
+  EXPECT_EQ(TrialDigestOf(first), TrialDigestOf(second));
+  // and RunTrial's loop is the same episode with PID
+  const TrialResult via_run_trial = RunTrial(task, Hmmwv(), TrialSpec());
+  Episode manual(task, Hmmwv());
+  std::unique_ptr<controllers::Controller> pid = controllers::MakeController("pid");
+  manual.SetObservationConfig(pid->observation_config());
+  manual.Reset(TrialSpec());
+  pid->Reset(manual.context());
+  while (!manual.Done()) manual.Step(pid->Update(manual.Observe()));
+  EXPECT_EQ(TrialDigestOf(manual.TakeResult()), TrialDigestOf(via_run_trial));
+}
+
+TEST(EpisodeApiTest, ResultBeforeTheEndIsProvisionalAndStepAfterTheEndDoesNothing) {
+  const terrain::TaskSpec task = FlatTask();
+  EpisodeRules rules;
+  rules.time_limit_s = 2.0;
+  Episode episode(task, Hmmwv(), rules);
+  const TrialResult mid = DriveStraight(&episode, 100);
+  EXPECT_FALSE(episode.Done());
+  EXPECT_DOUBLE_EQ(mid.sim_time_s, 0.5);
+  EXPECT_EQ(mid.status, TrialStatus::kTimeout);  // what it would be if it ended now
+  for (int i = 0; i < 1000; ++i) episode.Step({1.0, 0.0, 0.0});
+  EXPECT_TRUE(episode.Done());
+  EXPECT_EQ(episode.physics_steps(), 400);
+  EXPECT_EQ(episode.Result().status, TrialStatus::kTimeout);
+}
+
+TEST(EpisodeApiTest, NonFiniteCommandAndEndWithSimErrorEndTheTrial) {
+  const terrain::TaskSpec task = FlatTask();
+  Episode episode(task, Hmmwv());
+  episode.Reset(TrialSpec());
+  episode.Step({0.5, 0.0, 0.0});
+  episode.Step({std::nan(""), 0.0, 0.0});
+  EXPECT_TRUE(episode.Done());
+  EXPECT_EQ(episode.Result().status, TrialStatus::kSimError);
+  EXPECT_NE(episode.Result().message.find("non-finite command"), std::string::npos);
+  episode.Reset(TrialSpec());
+  EXPECT_FALSE(episode.Done());
+  episode.EndWithSimError("planner gave up");
+  EXPECT_EQ(episode.Result().status, TrialStatus::kSimError);
+  EXPECT_EQ(episode.Result().message, "planner gave up");
+}
+
+TEST(EpisodeApiTest, BadRulesAreInputErrors) {
+  const terrain::TaskSpec task = FlatTask();
+  auto key_of = [&](const EpisodeRules& rules) -> std::string {
+    try {
+      Episode e(task, Hmmwv(), rules);
+    } catch (const InputError& e) {
+      return e.key();
+    }
+    return "";
+  };
+  EpisodeRules r;
+  r.control_period_s = 0.0123;  // not a whole number of 5 ms steps
+  EXPECT_EQ(key_of(r), "control_period_s");
+  r = EpisodeRules();
+  r.time_limit_s = 1e308;
+  EXPECT_EQ(key_of(r), "time_limit_s");
+  r = EpisodeRules();
+  r.time_limit_s = std::nan("");
+  EXPECT_EQ(key_of(r), "time_limit_s");
+  r = EpisodeRules();
+  r.step_s = -1.0;
+  EXPECT_EQ(key_of(r), "step_s");
+  r = EpisodeRules();
+  r.trajectory_every_n_steps = -1;
+  EXPECT_EQ(key_of(r), "trajectory_every_n_steps");
+}
+
+TEST(EpisodeApiTest, NoTrajectoryWhenAskedForNone) {
+  const terrain::TaskSpec task = FlatTask();
+  EpisodeRules rules;
+  rules.trajectory_every_n_steps = 0;
+  Episode episode(task, Hmmwv(), rules);
+  const TrialResult r = DriveStraight(&episode, 200);
+  EXPECT_TRUE(r.trajectory.empty());
+  EXPECT_GT(r.path_length_m, 1.0);
 }
 
 TEST(EpisodeTest, StatusNames) {

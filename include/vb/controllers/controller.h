@@ -1,6 +1,7 @@
 // The one interface of all mobility systems. A controller sees observations and ground-truth
-// maps, never the physics engine. Update() is called every physics step; the controller decides
-// internally when to recompute (its own rate).
+// maps, never the physics engine. Update() is called once per control period of the episode
+// (EpisodeRules::control_period_s; RunTrial uses one physics step, 5 ms, as the original); the
+// controller decides internally when to recompute (its own rate).
 #pragma once
 
 #include <cstdint>
@@ -8,19 +9,13 @@
 #include <string>
 #include <vector>
 
+#include "vb/controllers/observation.h"
 #include "vb/engine/types.h"
 #include "vb/terrain/grid_planner.h"
+#include "vb/terrain/gt_maps.h"
 #include "vb/terrain/task.h"
 
 namespace vb::controllers {
-
-struct Observation {
-  double time_s = 0.0;
-  Vec3 position_W = Vec3::Zero();     // chassis reference point
-  Rpy rpy;
-  Vec3 velocity_W = Vec3::Zero();
-  double forward_speed_mps = 0.0;
-};
 
 struct Command {
   double throttle = 0.0;   // [0, 1]
@@ -32,9 +27,13 @@ struct Command {
 struct EpisodeContext {
   const terrain::TaskSpec* task = nullptr;
   const terrain::OccupancyGrid* inflated_obstacles = nullptr;  // planning grid
+  // Whole-world ground-truth layers (elevation, semantics, friction, bare obstacle footprints),
+  // for systems that look beyond the observation's crops (e.g. along their rollouts).
+  const terrain::GroundTruthMaps* maps = nullptr;
   Vec2 goal_m = Vec2::Zero();
   double scale = 1.0;        // environment scale (look-ahead etc. scale with it)
   double step_s = 0.005;     // physics step
+  double control_period_s = 0.005;  // time between two Update calls
   uint64_t seed = 0;         // trial seed: the only source of randomness a controller may use
 };
 
@@ -42,8 +41,14 @@ class Controller {
  public:
   virtual ~Controller() = default;
   virtual std::string name() const = 0;
+  // What the controller needs in its observations besides the robot state and the navigation
+  // (crops); asked once, before the episode starts.
+  virtual ObservationConfig observation_config() const { return ObservationConfig(); }
   virtual void Reset(const EpisodeContext& context) = 0;
   virtual Command Update(const Observation& obs) = 0;
+  // A copy with the same internal state (what a branching planner or a snapshot of a whole trial
+  // needs: the episode's Snapshot covers the world, this the controller).
+  virtual std::unique_ptr<Controller> Clone() const = 0;
 };
 
 // Names of all available systems, and a factory; nullptr for an unknown name.

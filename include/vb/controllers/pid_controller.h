@@ -1,13 +1,12 @@
-// PID baseline (reference_verti_bench.md §7.1): A* global path replanned every 0.1 s, look-ahead
-// point 10 m (scaled), steering = heading error (kp 1) rate-limited to 0.05 per 5 ms step and
-// clamped to [-1, 1]; throttle/brake from a proportional speed controller (kp 1, 4 m/s).
+// PID baseline (reference_verti_bench.md §7.1): steering = heading error to the local goal (the
+// look-ahead point 10 m * scale ahead on the A* path replanned every 0.1 s, which the observation
+// builder provides) with kp 1, rate-limited to 0.05 per 5 ms and clamped to [-1, 1]; throttle
+// and brake from a proportional speed controller (kp 1, 4 m/s).
 #pragma once
 
-#include <optional>
-#include <vector>
+#include <memory>
 
 #include "vb/controllers/controller.h"
-#include "vb/terrain/grid_planner.h"
 
 namespace vb::controllers {
 
@@ -17,30 +16,27 @@ struct PidParams {
   double target_speed_mps = 4.0;
   double speed_kp = 1.0;
   double lookahead_m = 10.0;             // multiplied by the environment scale
-  double replan_period_s = 0.1;
+  double replan_period_s = 0.1;          // global path replanning (observation builder)
 };
+
+// The speed controller shared by the path followers (Chrono's ChSpeedController with
+// (Kp, Ki, Kd) = (kp, 0, 0)): output kp * (target - speed) in [-1, 1], positive as throttle,
+// negative as brake. Writes throttle and braking of *command.
+void SpeedControl(double target_mps, double speed_mps, double kp, Command* command);
 
 class PidController : public Controller {
  public:
   explicit PidController(const PidParams& params = PidParams());
   std::string name() const override { return "pid"; }
+  ObservationConfig observation_config() const override;
   void Reset(const EpisodeContext& context) override;
   Command Update(const Observation& obs) override;
-
-  // Introspection for tests and diagnostics: the path being followed (world x, y) and the number
-  // of planner calls since Reset (successful or not).
-  const std::vector<Vec2>& path() const { return path_m_; }
-  int replan_count() const { return replan_count_; }
+  std::unique_ptr<Controller> Clone() const override;
 
  private:
   PidParams params_;
   EpisodeContext context_;
-  std::optional<terrain::GoalDistanceField> goal_field_;  // the trial's planner (static goal)
-  std::vector<Vec2> path_m_;
-  size_t local_goal_index_ = 0;
-  double last_replan_s_ = -1e9;
   double steering_ = 0.0;
-  int replan_count_ = 0;
 };
 
 }  // namespace vb::controllers

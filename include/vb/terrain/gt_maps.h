@@ -40,6 +40,7 @@ enum class MapLayer {
   kElevation,  // terrain height (m)
   kSemantics,  // surface class id (SurfaceClass value, 0..9)
   kOccupancy,  // 1 = obstacle (inflated as configured), 0 = free
+  kFriction,   // Coulomb friction of the rigid patch under the point; 0 on mud, sand, snow
 };
 
 class GroundTruthMaps {
@@ -61,6 +62,9 @@ class GroundTruthMaps {
   // Egocentric crop around position_m facing yaw_rad (conventions above).
   GridMap Crop(MapLayer layer, const Vec2& position_m, double yaw_rad, int size_cells,
                double resolution_m) const;
+  // The same into *out, reusing its storage (no allocation once it has the size).
+  void CropInto(MapLayer layer, const Vec2& position_m, double yaw_rad, int size_cells,
+                double resolution_m, GridMap* out) const;
 
   const Terrain& terrain() const { return terrain_; }
 
@@ -70,6 +74,7 @@ class GroundTruthMaps {
   GridMap elevation_;
   GridMap semantics_;
   GridMap occupancy_map_;
+  GridMap friction_;
 };
 
 }  // namespace vb::terrain

@@ -1,6 +1,7 @@
-// One trial, docs/architecture.md §4: world assembly from the task, the fixed-step loop in the
-// order the vehicle requires (controller -> SetInputs -> Synchronize -> Step -> UpdateState),
-// success and failure rules, metrics and the trajectory. No I/O.
+// The episode, docs/architecture.md "Episode": the static world of a task (built once), the
+// per-trial world (physics, vehicle, soil; built by Reset), the physics step in the order the
+// vehicle requires (SetInputs -> Synchronize -> soil EndStep -> world Step -> UpdateState), the
+// state checks, the success and failure rules, and the bookkeeping (trial_metrics.h). No I/O.
 #include "vb/engine/runner/episode.h"
 
 #include <algorithm>
@@ -12,17 +13,21 @@
 #include <string>
 #include <vector>
 
+#include "trial_metrics.h"
 #include "vb/engine/error.h"
 #include "vb/engine/physics_world.h"
+#include "vb/engine/runner/observation_builder.h"
 #include "vb/soil/scm_soil.h"
 #include "vb/terrain/grid_planner.h"
+#include "vb/terrain/gt_maps.h"
 #include "vb/terrain/terrain.h"
 #include "vb/terrain/terrain_physics.h"
-#include "vb/vehicles/vehicle.h"
 
 namespace vb::runner {
 
 namespace {
+
+using Clock = std::chrono::steady_clock;
 
 constexpr double kRadToDeg = 180.0 / kPi;
 // A vehicle on its side or roof cannot recover on its own: the trial may stop there.
@@ -31,58 +36,14 @@ constexpr double kTippedOverRoll_rad = 0.5 * kPi;
 // HMMWV tops out near 40 m/s): treat as a numerical blow-up, not as driving.
 constexpr double kAbsurdDistance_m = 1.0e4;
 constexpr double kAbsurdSpeed_mps = 200.0;
-
-// Welford's running mean and population variance plus the maximum; numerically stable over the
-// 12000 steps of a trial and independent of the signal's offset.
-class RunningStats {
- public:
-  void Add(double x) {
-    ++n_;
-    const double delta = x - mean_;
-    mean_ += delta / static_cast<double>(n_);
-    m2_ += delta * (x - mean_);
-    max_ = n_ == 1 ? x : std::max(max_, x);
-  }
-  SignalStats Get() const {
-    SignalStats s;
-    if (n_ == 0) return s;
-    s.mean = mean_;
-    s.var = m2_ / static_cast<double>(n_);
-    s.max = max_;
-    return s;
-  }
-
- private:
-  long n_ = 0;
-  double mean_ = 0.0;
-  double m2_ = 0.0;
-  double max_ = 0.0;
-};
-
-// Planar positions of the last `window_steps` steps in a ring, so the stuck test ("moved no more
-// than d during the last window") is O(1) per step without allocation.
-class PositionWindow {
- public:
-  explicit PositionWindow(long window_steps)
-      : ring_(static_cast<size_t>(window_steps) + 1, Vec2::Zero()) {}
-  void Push(const Vec2& p) {
-    ring_[head_] = p;
-    head_ = (head_ + 1) % ring_.size();
-    if (count_ < ring_.size()) ++count_;
-  }
-  bool Full() const { return count_ == ring_.size(); }
-  // Planar displacement between the newest sample and the one `window_steps` steps before it.
-  double Displacement() const {
-    const Vec2& newest = ring_[(head_ + ring_.size() - 1) % ring_.size()];
-    const Vec2& oldest = ring_[head_ % ring_.size()];
-    return (newest - oldest).norm();
-  }
-
- private:
-  std::vector<Vec2> ring_;
-  size_t head_ = 0;
-  size_t count_ = 0;
-};
+// A touch of the same obstacle within this time is the same contact event.
+constexpr double kContactGap_s = 0.5;
+// Longest time limit: one simulated day (a benchmark trial is 60 s; beyond this the step counter
+// and the trajectory are not meant to hold a trial).
+constexpr double kMaxTimeLimit_s = 86400.0;
+// The trajectory's storage is reserved for this much simulated time at most; longer trials grow
+// it (amortised) rather than reserve gigabytes up front.
+constexpr double kTrajectoryReserve_s = 60.0;
 
 bool IsFinite(const Vec3& v) { return v.allFinite(); }
 
@@ -109,36 +70,15 @@ std::string CheckState(const vehicles::VehicleState& s) {
   return "";
 }
 
-TrajectorySample MakeSample(double t, const vehicles::VehicleState& s,
-                            const vehicles::DriverInputs& in) {
-  TrajectorySample out;
-  out.time_s = t;
-  out.position_W = s.pose_W.position;
-  out.velocity_W = s.velocity_W;
-  out.speed_mps = s.velocity_W.norm();
-  out.rpy = s.rpy;
-  out.throttle = in.throttle;
-  out.steering = in.steering;
-  out.braking = in.braking;
-  out.gear = s.gear;
-  out.wheel_surface.reserve(s.wheels.size());
-  out.wheel_sinkage_m.reserve(s.wheels.size());
-  for (const vehicles::WheelState& w : s.wheels) {
-    out.wheel_surface.push_back(w.in_contact ? static_cast<int>(w.surface) : -1);
-    out.wheel_sinkage_m.push_back(w.sinkage_m);
-  }
-  return out;
-}
-
 // Times the wheels' soil contact, which the vehicle calls from inside Synchronize, so the step
 // breakdown can report all soil work in one bucket. Used only when timings are asked for.
 class TimedSoil : public soil::SoilContact {
  public:
   explicit TimedSoil(soil::ScmSoil* soil) : soil_(soil) {}
   soil::WheelSoilOutput WheelContact(const soil::WheelSoilInput& wheel, double dt) override {
-    const auto t0 = std::chrono::steady_clock::now();
+    const auto t0 = Clock::now();
     const soil::WheelSoilOutput out = soil_->WheelContact(wheel, dt);
-    seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    seconds_ += std::chrono::duration<double>(Clock::now() - t0).count();
     return out;
   }
   void EndStep(double dt) override { soil_->EndStep(dt); }
@@ -159,35 +99,34 @@ bool HasDeformablePatches(const terrain::TaskSpec& task) {
                      [](terrain::SurfaceClass c) { return terrain::IsDeformable(c); });
 }
 
-void ValidateSetup(const terrain::TaskSpec& task, const TrialSpec& spec,
-                   const EpisodeRules& rules, const soil::SoilConfig* soil) {
-  const int num_pairs = static_cast<int>(task.pairs.size());
-  if (spec.pair_index < 0 || spec.pair_index >= num_pairs) {
-    throw InputError(task.source_file, 0, "pair",
-                     "pair index " + std::to_string(spec.pair_index) + " out of range; task '" +
-                         task.name + "' has " + std::to_string(num_pairs) + " pairs (0.." +
-                         std::to_string(num_pairs - 1) + ")");
+// Physics steps per control period; InputError unless the period is a whole number of steps.
+int StepsPerControlPeriod(const EpisodeRules& rules) {
+  const double ratio = rules.control_period_s / rules.step_s;
+  const long n = std::lround(ratio);
+  if (!(n >= 1) || std::abs(ratio - static_cast<double>(n)) > 1e-9 * ratio || n > 1000000) {
+    throw InputError("", 0, "control_period_s",
+                     "must be a whole number (1 to 1e6) of physics steps of " +
+                         Fmt(rules.step_s) + " s, got " + Fmt(rules.control_period_s) + " s");
   }
-  if (HasDeformablePatches(task) && soil == nullptr) {
-    throw InputError(task.source_file, 0, "semantics.classes",
-                     "the task has deformable patches (mud/sand/snow) but no soil parameters "
-                     "were given (data/soils/*.yaml, vb_run --soil)");
-  }
-  if (!(rules.step_s > 0.0)) throw InputError("", 0, "step_s", "must be > 0");
-  if (!(rules.time_limit_s > 0.0)) throw InputError("", 0, "time_limit_s", "must be > 0");
-  if (rules.trajectory_every_n_steps < 1) {
-    throw InputError("", 0, "trajectory_every_n_steps", "must be >= 1");
-  }
+  return static_cast<int>(n);
 }
 
-std::unique_ptr<controllers::Controller> MakeSystem(const std::string& name) {
-  std::unique_ptr<controllers::Controller> c = controllers::MakeController(name);
-  if (c) return c;
-  std::string valid;
-  for (const std::string& n : controllers::ControllerNames()) {
-    valid += (valid.empty() ? "" : ", ") + n;
+void ValidateRules(const EpisodeRules& rules) {
+  if (!(rules.step_s > 0.0) || !(rules.step_s <= 0.1)) {
+    throw InputError("", 0, "step_s", "must be in (0, 0.1] s, got " + Fmt(rules.step_s));
   }
-  throw InputError("", 0, "system", "unknown system '" + name + "'; valid: " + valid);
+  if (!(rules.time_limit_s > 0.0) || !(rules.time_limit_s <= kMaxTimeLimit_s)) {
+    throw InputError("", 0, "time_limit_s",
+                     "must be in (0, " + Fmt(kMaxTimeLimit_s) + "] s, got " +
+                         Fmt(rules.time_limit_s));
+  }
+  if (rules.trajectory_every_n_steps < 0) {
+    throw InputError("", 0, "trajectory_every_n_steps", "must be >= 0 (0: no trajectory)");
+  }
+  if (!(rules.stuck_window_s > 0.0) || !(rules.stuck_window_s <= kMaxTimeLimit_s)) {
+    throw InputError("", 0, "stuck_window_s", "must be in (0, " + Fmt(kMaxTimeLimit_s) + "] s");
+  }
+  StepsPerControlPeriod(rules);
 }
 
 }  // namespace
@@ -203,75 +142,76 @@ std::string_view TrialStatusName(TrialStatus s) {
   return "unknown";
 }
 
-TrialResult RunTrial(const terrain::TaskSpec& task, const vehicles::VehicleParams& vehicle_params,
-                     const TrialSpec& spec, const EpisodeRules& rules,
-                     const soil::SoilConfig* soil_config) {
-  ValidateSetup(task, spec, rules, soil_config);
-  std::unique_ptr<controllers::Controller> controller = MakeSystem(spec.system);
-  const auto wall_start = std::chrono::steady_clock::now();
+// Where a trial stands: step count, the decision so far, the inputs being applied.
+struct Progress {
+  long k = 0;                       // physics steps since Reset
+  bool done = false;
+  bool decided = false;             // status final before the end rules (success, sim_error)
+  TrialStatus status = TrialStatus::kTimeout;
+  std::string message;
+  double traversal_time_s = -1.0;
+  double final_goal_distance_m = 0.0;
+  vehicles::DriverInputs inputs;    // applied during the last physics step
+};
 
-  TrialResult result;
-  result.spec = spec;
-  result.task_name = task.name;
+struct Episode::Impl {
+  Impl(const terrain::TaskSpec& task_in, const vehicles::VehicleParams& vehicle_in,
+       const EpisodeRules& rules_in, const soil::SoilConfig* soil_in)
+      : task(task_in),
+        vehicle_params(vehicle_in),
+        rules(rules_in),
+        soil_config(soil_in),
+        ground(task_in),
+        inflated(terrain::Inflate(terrain::RasterizeObstacles(task_in),
+                                  terrain::PlannerInflationCells(task_in))),
+        maps(task_in, /*inflation_cells=*/0),
+        builder(maps, inflated, task_in.scale) {}
 
-  // Static world, and the planning grid as the original: obstacles dilated by 4 m * scale.
-  const terrain::StartGoalPair& pair = task.pairs[static_cast<size_t>(spec.pair_index)];
-  const double scale = task.scale;
-  const terrain::Terrain ground(task);
-  engine::PhysicsWorld world;
-  terrain::AddTerrainToPhysics(task, ground, &world);
-  const terrain::OccupancyGrid inflated = terrain::Inflate(
-      terrain::RasterizeObstacles(task), terrain::PlannerInflationCells(task));
+  // --- static world (per Episode) ---
+  const terrain::TaskSpec& task;
+  const vehicles::VehicleParams& vehicle_params;
+  const EpisodeRules rules;
+  const soil::SoilConfig* soil_config;
+  const terrain::Terrain ground;
+  // The planning grid as the original: obstacle footprints dilated by 4 m * scale.
+  const terrain::OccupancyGrid inflated;
+  const terrain::GroundTruthMaps maps;   // bare obstacle footprints
+  ObservationBuilder builder;
+  int steps_per_period = 1;
+  long max_steps = 1;
+  long window_steps = 1;
+  long contact_gap_steps = 1;
+  double goal_radius_m = 10.0;
+  double stuck_distance_m = 1.0;
 
-  // Vehicle facing the goal, dropped from start_height: the highest ground under the reference
-  // point and the wheel centres decides the height, so that on a slope no wheel starts inside
-  // the terrain (3.4 m wheelbase on a 30 deg slope: ~1 m of height difference). It settles onto
-  // the local slope during the first steps.
-  const Vec2 to_goal0 = pair.goal_m - pair.start_m;
-  const double yaw0 = std::atan2(to_goal0.y(), to_goal0.x());
-  const Eigen::Rotation2Dd yaw_rotation(yaw0);
-  double ground_z = ground.Height(pair.start_m.x(), pair.start_m.y());
-  for (const vehicles::AxleParams& axle : vehicle_params.axles) {
-    for (double side : {1.0, -1.0}) {
-      const Vec2 wheel_xy = pair.start_m + yaw_rotation * Vec2(axle.x_m, side * axle.half_track_m);
-      ground_z = std::max(ground_z, ground.Height(wheel_xy.x(), wheel_xy.y()));
-    }
-  }
-  Pose start_pose;
-  start_pose.position =
-      Vec3(pair.start_m.x(), pair.start_m.y(),
-           ground_z + vehicle_params.wheel.radius_m -
-               (vehicle_params.axles.empty() ? 0.0 : vehicle_params.axles[0].z_m) +
-               rules.start_height_m);
-  start_pose.rotation = FromYaw(yaw0);
-  vehicles::Vehicle vehicle(vehicle_params, ground, start_pose, &world);
-  // Deformable patches: one SCM grid over the whole world (it only stores what wheels touch);
-  // wheels over rigid patches keep the vehicle's rigid tire, rocks stay rigid bodies.
+  // --- per trial (Reset) ---
+  bool started = false;
+  TrialSpec spec;
+  Vec2 goal_m = Vec2::Zero();
+  std::unique_ptr<engine::PhysicsWorld> world;
+  std::unique_ptr<vehicles::Vehicle> vehicle;
   std::unique_ptr<soil::ScmSoil> soil;
   std::unique_ptr<TimedSoil> timed_soil;  // only when timings are asked for
-  if (HasDeformablePatches(task)) {
-    soil = std::make_unique<soil::ScmSoil>(ground, *soil_config);
-    if (rules.timings != nullptr) {
-      timed_soil = std::make_unique<TimedSoil>(soil.get());
-      vehicle.SetSoil(timed_soil.get());
-    } else {
-      vehicle.SetSoil(soil.get());
-    }
-  }
-
   controllers::EpisodeContext context;
-  context.task = &task;
-  context.inflated_obstacles = &inflated;
-  context.goal_m = pair.goal_m;
-  context.scale = scale;
-  context.step_s = rules.step_s;
-  context.seed = spec.seed;
-  controller->Reset(context);
+  Clock::time_point wall_start;
+  Progress progress;
+  TrialMetrics metrics;
+  controllers::Observation observation;
+  bool observation_valid = false;
 
-  // Optional timing breakdown: a clock read between the stages, only when asked for.
-  using Clock = std::chrono::steady_clock;
+  double Time() const { return static_cast<double>(progress.k) * rules.step_s; }
+  void PhysicsStep();
+  void Finish();
+  void Classify(TrialStatus* status, std::string* message) const;
+  TrialResult MakeResult() const;
+};
+
+// One physics step with progress.inputs, then the checks and the bookkeeping of step k.
+void Episode::Impl::PhysicsStep() {
+  const double dt = rules.step_s;
   StepTimings* const timings = rules.timings;
-  Clock::time_point mark = Clock::now();
+  // Optional timing breakdown: a clock read between the stages, only when asked for.
+  Clock::time_point mark;
   auto lap = [&](double* bucket) {
     if (timings == nullptr) return;
     const Clock::time_point now = Clock::now();
@@ -279,183 +219,310 @@ TrialResult RunTrial(const terrain::TaskSpec& task, const vehicles::VehicleParam
     mark = now;
   };
   if (timings != nullptr) {
-    timings->setup_s += std::chrono::duration<double>(mark - wall_start).count();
+    mark = Clock::now();
+    ++timings->steps;
   }
 
-  // Step counts instead of accumulated time: t = k * dt never drifts.
-  const double dt = rules.step_s;
-  const long max_steps = std::max(1L, std::lround(rules.time_limit_s / dt));
-  const long window_steps = std::max(1L, std::lround(rules.stuck_window_s / dt));
-  const double goal_radius_m = rules.goal_radius_m * scale;
-  const double stuck_distance_m = rules.stuck_distance_m * scale;
+  vehicle->SetInputs(progress.inputs);
+  vehicle->Synchronize(dt);
+  lap(timings != nullptr ? &timings->vehicle_sync_s : nullptr);
+  if (soil) {
+    soil->EndStep(dt);
+    lap(timings != nullptr ? &timings->soil_s : nullptr);
+  }
+  if (timed_soil) {  // the wheels' soil contact ran inside Synchronize: move it to soil_s
+    const double contact_s = timed_soil->TakeSeconds();
+    timings->vehicle_sync_s -= contact_s;
+    timings->soil_s += contact_s;
+  }
+  world->Step(dt);
+  lap(timings != nullptr ? &timings->physics_step_s : nullptr);
+  vehicle->UpdateState();
+  lap(timings != nullptr ? &timings->vehicle_update_s : nullptr);
+  ++progress.k;
+  const double t = Time();
+  const vehicles::VehicleState& s = vehicle->state();
+
+  // Numerical trouble ends the trial as data, never as a crash.
+  const std::string trouble =
+      world->StateIsFinite() ? CheckState(s) : "non-finite physics state";
+  if (!trouble.empty()) {
+    progress.status = TrialStatus::kSimError;
+    progress.message = trouble + " at t = " + Fmt(t) + " s";
+    progress.decided = true;
+    Finish();
+    lap(timings != nullptr ? &timings->bookkeeping_s : nullptr);
+    return;
+  }
+
+  metrics.AddStep(s, progress.inputs);
+  metrics.AddContacts(progress.k, world->ObstacleContacts(), vehicle->body(), task.rocks.size());
   const int every = rules.trajectory_every_n_steps;
-
-  RunningStats roll, pitch, abs_roll, abs_pitch, throttle, steering, abs_steering;
-  PositionWindow window(window_steps);
-  // Step of the last touch per obstacle (rocks first, then trees); a touch starts a new contact
-  // event only after kContactGapS out of contact, so a wheel bouncing on a rock face counts once.
-  constexpr double kContactGapS = 0.5;
-  const long contact_gap_steps = std::lround(kContactGapS / rules.step_s);
-  std::vector<long> last_touch_step(task.rocks.size() + task.trees.size(), -contact_gap_steps - 1);
-  result.trajectory.reserve(static_cast<size_t>(max_steps / every) + 2);
-
-  vehicles::DriverInputs inputs;
-  result.trajectory.push_back(MakeSample(0.0, vehicle.state(), inputs));
-  window.Push(vehicle.state().pose_W.position.head<2>());
-  Vec2 last_xy = vehicle.state().pose_W.position.head<2>();
-  result.final_goal_distance_m = (pair.goal_m - last_xy).norm();
-  bool decided = false;  // status already final (success or sim_error)
-  long k = 0;
-  try {
-    while (true) {
-      if (timings != nullptr) {  // the previous step's checks, metrics and rules
-        lap(&timings->bookkeeping_s);
-        ++timings->steps;
-      }
-      // Controller on the current observation.
-      const vehicles::VehicleState& s0 = vehicle.state();
-      controllers::Observation obs;
-      obs.time_s = static_cast<double>(k) * dt;
-      obs.position_W = s0.pose_W.position;
-      obs.rpy = s0.rpy;
-      obs.velocity_W = s0.velocity_W;
-      obs.forward_speed_mps = s0.forward_speed_mps;
-      const controllers::Command cmd = controller->Update(obs);
-      if (timings != nullptr) lap(&timings->controller_s);
-      if (!std::isfinite(cmd.throttle) || !std::isfinite(cmd.steering) ||
-          !std::isfinite(cmd.braking)) {
-        result.status = TrialStatus::kSimError;
-        result.message = "controller '" + spec.system + "' returned a non-finite command";
-        decided = true;
-        break;
-      }
-      inputs.throttle = std::clamp(cmd.throttle, 0.0, 1.0);
-      inputs.steering = std::clamp(cmd.steering, -1.0, 1.0);
-      inputs.braking = std::clamp(cmd.braking, 0.0, 1.0);
-
-      // One physics step.
-      vehicle.SetInputs(inputs);
-      vehicle.Synchronize(dt);
-      if (timings != nullptr) lap(&timings->vehicle_sync_s);
-      if (soil) {
-        soil->EndStep(dt);
-        if (timings != nullptr) lap(&timings->soil_s);
-      }
-      if (timed_soil) {  // the wheels' soil contact ran inside Synchronize: move it to soil_s
-        const double contact_s = timed_soil->TakeSeconds();
-        timings->vehicle_sync_s -= contact_s;
-        timings->soil_s += contact_s;
-      }
-      world.Step(dt);
-      if (timings != nullptr) lap(&timings->physics_step_s);
-      vehicle.UpdateState();
-      if (timings != nullptr) lap(&timings->vehicle_update_s);
-      ++k;
-      const double t = static_cast<double>(k) * dt;
-      result.sim_time_s = t;
-      const vehicles::VehicleState& s = vehicle.state();
-
-      // Numerical trouble ends the trial as data, never as a crash.
-      std::string trouble = world.StateIsFinite() ? CheckState(s) : "non-finite physics state";
-      if (!trouble.empty()) {
-        result.status = TrialStatus::kSimError;
-        result.message = trouble + " at t = " + Fmt(t) + " s";
-        decided = true;
-        break;
-      }
-
-      // Metrics over every step.
-      const double roll_deg = s.rpy.roll_rad * kRadToDeg;
-      const double pitch_deg = s.rpy.pitch_rad * kRadToDeg;
-      roll.Add(roll_deg);
-      pitch.Add(pitch_deg);
-      abs_roll.Add(std::abs(roll_deg));
-      abs_pitch.Add(std::abs(pitch_deg));
-      throttle.Add(inputs.throttle);
-      steering.Add(inputs.steering);
-      abs_steering.Add(std::abs(inputs.steering));
-      const Vec2 xy = s.pose_W.position.head<2>();
-      result.path_length_m += (xy - last_xy).norm();
-      last_xy = xy;
-      window.Push(xy);
-
-      // Contact events with rocks and trees.
-      for (const engine::ObstacleContact& c : world.ObstacleContacts()) {
-        if (c.body != vehicle.body()) continue;
-        const size_t index = c.obstacle_tag >= terrain::kTreeTagOffset
-                                 ? task.rocks.size() + (c.obstacle_tag - terrain::kTreeTagOffset)
-                                 : static_cast<size_t>(c.obstacle_tag);
-        if (index >= last_touch_step.size()) continue;
-        if (k - last_touch_step[index] > contact_gap_steps) ++result.obstacle_contacts;
-        last_touch_step[index] = k;
-      }
-
-      if (k % every == 0) result.trajectory.push_back(MakeSample(t, s, inputs));
-
-      // Success, then the early ends of certain failures, then the time limit.
-      result.final_goal_distance_m = (pair.goal_m - xy).norm();
-      if (result.final_goal_distance_m <= goal_radius_m) {
-        result.status = TrialStatus::kSuccess;
-        result.traversal_time_s = t;
-        result.message = "reached the goal";
-        decided = true;
-        break;
-      }
-      if (rules.end_early) {
-        if (std::abs(s.rpy.roll_rad) > kTippedOverRoll_rad) break;
-        if (window.Full() && window.Displacement() <= stuck_distance_m) break;
-      }
-      if (k >= max_steps) break;
-    }
-  } catch (const std::exception& e) {
-    result.status = TrialStatus::kSimError;
-    result.message = std::string("exception during stepping at t = ") +
-                     Fmt(static_cast<double>(k) * dt) + " s: " + e.what();
-    decided = true;
+  if (every > 0 && progress.k % every == 0) {
+    metrics.trajectory().push_back(MakeSample(t, s, progress.inputs));
   }
 
-  if (timings != nullptr) lap(&timings->bookkeeping_s);
-  if (timings != nullptr && soil) {
-    const soil::ScmStats& st = soil->stats();
-    timings->soil_contact_nodes = st.contact_nodes;
-    timings->soil_tiles = st.tiles;
-    timings->soil_memory_bytes = st.memory_bytes;
+  // Success, then the early ends of certain failures, then the time limit.
+  const Vec2 xy = s.pose_W.position.head<2>();
+  progress.final_goal_distance_m = (goal_m - xy).norm();
+  if (progress.final_goal_distance_m <= goal_radius_m) {
+    progress.status = TrialStatus::kSuccess;
+    progress.traversal_time_s = t;
+    progress.message = "reached the goal";
+    progress.decided = true;
+    Finish();
+  } else if (rules.end_early && (std::abs(s.rpy.roll_rad) > kTippedOverRoll_rad ||
+                                 (metrics.window().Full() &&
+                                  metrics.window().Displacement() <= stuck_distance_m))) {
+    Finish();
+  } else if (progress.k >= max_steps) {
+    Finish();
   }
-  const vehicles::VehicleState& final_state = vehicle.state();
-  // The last state always closes the trajectory (unless it is the invalid one of a sim_error).
-  if (result.status != TrialStatus::kSimError &&
-      result.trajectory.back().time_s != result.sim_time_s) {
-    result.trajectory.push_back(MakeSample(result.sim_time_s, final_state, inputs));
-  }
-
-  // Failure type from the final state (architecture §4).
-  if (!decided) {
-    const double final_roll = std::abs(final_state.rpy.roll_rad);
-    if (final_roll > rules.rollover_roll_rad) {
-      result.status = TrialStatus::kRollover;
-      result.message = "rolled over (|roll| = " + Fmt(final_roll * kRadToDeg) +
-                       " deg at the end)";
-    } else if (window.Full() && window.Displacement() <= stuck_distance_m) {
-      result.status = TrialStatus::kStuck;
-      result.message = "stuck (moved " + Fmt(window.Displacement()) + " m in the last " +
-                       Fmt(rules.stuck_window_s) + " s)";
-    } else {
-      result.status = TrialStatus::kTimeout;
-      result.message = "time limit of " + Fmt(rules.time_limit_s) + " s reached";
-    }
-  }
-
-  result.roll_deg = roll.Get();
-  result.pitch_deg = pitch.Get();
-  result.abs_roll_deg = abs_roll.Get();
-  result.abs_pitch_deg = abs_pitch.Get();
-  result.throttle = throttle.Get();
-  result.steering = steering.Get();
-  result.abs_steering = abs_steering.Get();
-  result.wall_time_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-  result.real_time_factor = result.wall_time_s > 0.0 ? result.sim_time_s / result.wall_time_s : 0.0;
-  return result;
+  lap(timings != nullptr ? &timings->bookkeeping_s : nullptr);
 }
+
+// Failure type from the current state (architecture §4).
+void Episode::Impl::Classify(TrialStatus* status, std::string* message) const {
+  const vehicles::VehicleState& s = vehicle->state();
+  const double final_roll = std::abs(s.rpy.roll_rad);
+  if (final_roll > rules.rollover_roll_rad) {
+    *status = TrialStatus::kRollover;
+    *message = "rolled over (|roll| = " + Fmt(final_roll * kRadToDeg) + " deg at the end)";
+  } else if (metrics.window().Full() && metrics.window().Displacement() <= stuck_distance_m) {
+    *status = TrialStatus::kStuck;
+    *message = "stuck (moved " + Fmt(metrics.window().Displacement()) + " m in the last " +
+               Fmt(rules.stuck_window_s) + " s)";
+  } else {
+    *status = TrialStatus::kTimeout;
+    *message = "time limit of " + Fmt(rules.time_limit_s) + " s reached";
+  }
+}
+
+// The trial has ended: the last state closes the trajectory (unless it is the invalid state of a
+// sim_error), and an undecided trial gets its failure type.
+void Episode::Impl::Finish() {
+  progress.done = true;
+  observation_valid = false;
+  const double t = Time();
+  std::vector<TrajectorySample>& trajectory = metrics.trajectory();
+  if (progress.status != TrialStatus::kSimError && rules.trajectory_every_n_steps > 0 &&
+      (trajectory.empty() || trajectory.back().time_s != t)) {
+    trajectory.push_back(MakeSample(t, vehicle->state(), progress.inputs));
+  }
+  if (!progress.decided) Classify(&progress.status, &progress.message);
+  if (rules.timings != nullptr && soil) {
+    const soil::ScmStats& st = soil->stats();
+    rules.timings->soil_contact_nodes = st.contact_nodes;
+    rules.timings->soil_tiles = st.tiles;
+    rules.timings->soil_memory_bytes = st.memory_bytes;
+  }
+}
+
+TrialResult Episode::Impl::MakeResult() const {
+  TrialResult r;
+  r.spec = spec;
+  r.task_name = task.name;
+  r.status = progress.status;
+  r.message = progress.message;
+  if (!progress.done) Classify(&r.status, &r.message);
+  r.sim_time_s = Time();
+  r.traversal_time_s = progress.traversal_time_s;
+  r.final_goal_distance_m = progress.final_goal_distance_m;
+  metrics.Fill(&r);
+  r.wall_time_s = std::chrono::duration<double>(Clock::now() - wall_start).count();
+  r.real_time_factor = r.wall_time_s > 0.0 ? r.sim_time_s / r.wall_time_s : 0.0;
+  return r;
+}
+
+Episode::Episode(const terrain::TaskSpec& task, const vehicles::VehicleParams& vehicle,
+                 const EpisodeRules& rules, const soil::SoilConfig* soil) {
+  ValidateRules(rules);
+  if (HasDeformablePatches(task) && soil == nullptr) {
+    throw InputError(task.source_file, 0, "semantics.classes",
+                     "the task has deformable patches (mud/sand/snow) but no soil parameters "
+                     "were given (data/soils/*.yaml, vb_run --soil)");
+  }
+  if (vehicle.axles.size() * 2 > kMaxWheels) {
+    throw InputError("", 0, "axles",
+                     "vehicle '" + vehicle.name + "' has " + std::to_string(vehicle.axles.size()) +
+                         " axles; at most " + std::to_string(kMaxWheels / 2) + " are supported");
+  }
+  impl_ = std::make_unique<Impl>(task, vehicle, rules, soil);
+  Impl& m = *impl_;
+  const double dt = rules.step_s;
+  m.steps_per_period = StepsPerControlPeriod(rules);
+  // Step counts instead of accumulated time: t = k * dt never drifts.
+  m.max_steps = std::max(1L, std::lround(rules.time_limit_s / dt));
+  m.window_steps = std::max(1L, std::lround(rules.stuck_window_s / dt));
+  m.contact_gap_steps = std::lround(kContactGap_s / dt);
+  m.goal_radius_m = rules.goal_radius_m * task.scale;
+  m.stuck_distance_m = rules.stuck_distance_m * task.scale;
+}
+
+Episode::~Episode() = default;
+
+void Episode::SetObservationConfig(const controllers::ObservationConfig& config) {
+  impl_->builder.SetConfig(config);
+  impl_->observation_valid = false;
+}
+
+void Episode::Reset(const TrialSpec& spec) {
+  Impl& m = *impl_;
+  const terrain::TaskSpec& task = m.task;
+  const int num_pairs = static_cast<int>(task.pairs.size());
+  if (spec.pair_index < 0 || spec.pair_index >= num_pairs) {
+    throw InputError(task.source_file, 0, "pair",
+                     "pair index " + std::to_string(spec.pair_index) + " out of range; task '" +
+                         task.name + "' has " + std::to_string(num_pairs) + " pairs (0.." +
+                         std::to_string(num_pairs - 1) + ")");
+  }
+  m.wall_start = Clock::now();
+  m.spec = spec;
+  const terrain::StartGoalPair& pair = task.pairs[static_cast<size_t>(spec.pair_index)];
+  m.goal_m = pair.goal_m;
+
+  // The per-trial world, rebuilt from scratch: the physics engine keeps contact caches, so a
+  // fresh world is what makes every trial independent of the ones before it.
+  m.timed_soil.reset();
+  m.soil.reset();
+  m.vehicle.reset();
+  m.world = std::make_unique<engine::PhysicsWorld>();
+  terrain::AddTerrainToPhysics(task, m.ground, m.world.get());
+
+  // Vehicle facing the goal, dropped from start_height: the highest ground under the reference
+  // point and the wheel centres decides the height, so that on a slope no wheel starts inside
+  // the terrain (3.4 m wheelbase on a 30 deg slope: ~1 m of height difference). It settles onto
+  // the local slope during the first steps.
+  const vehicles::VehicleParams& vp = m.vehicle_params;
+  const Vec2 to_goal0 = pair.goal_m - pair.start_m;
+  const double yaw0 = std::atan2(to_goal0.y(), to_goal0.x());
+  const Eigen::Rotation2Dd yaw_rotation(yaw0);
+  double ground_z = m.ground.Height(pair.start_m.x(), pair.start_m.y());
+  for (const vehicles::AxleParams& axle : vp.axles) {
+    for (double side : {1.0, -1.0}) {
+      const Vec2 wheel_xy = pair.start_m + yaw_rotation * Vec2(axle.x_m, side * axle.half_track_m);
+      ground_z = std::max(ground_z, m.ground.Height(wheel_xy.x(), wheel_xy.y()));
+    }
+  }
+  Pose start_pose;
+  start_pose.position =
+      Vec3(pair.start_m.x(), pair.start_m.y(),
+           ground_z + vp.wheel.radius_m - (vp.axles.empty() ? 0.0 : vp.axles[0].z_m) +
+               m.rules.start_height_m);
+  start_pose.rotation = FromYaw(yaw0);
+  m.vehicle = std::make_unique<vehicles::Vehicle>(vp, m.ground, start_pose, m.world.get());
+  // Deformable patches: one SCM grid over the whole world (it only stores what wheels touch);
+  // wheels over rigid patches keep the vehicle's rigid tire, rocks stay rigid bodies.
+  if (HasDeformablePatches(task)) {
+    m.soil = std::make_unique<soil::ScmSoil>(m.ground, *m.soil_config);
+    if (m.rules.timings != nullptr) {
+      m.timed_soil = std::make_unique<TimedSoil>(m.soil.get());
+      m.vehicle->SetSoil(m.timed_soil.get());
+    } else {
+      m.vehicle->SetSoil(m.soil.get());
+    }
+  }
+
+  m.context = controllers::EpisodeContext();
+  m.context.task = &task;
+  m.context.inflated_obstacles = &m.inflated;
+  m.context.maps = &m.maps;
+  m.context.goal_m = pair.goal_m;
+  m.context.scale = task.scale;
+  m.context.step_s = m.rules.step_s;
+  m.context.control_period_s = m.rules.control_period_s;
+  m.context.seed = spec.seed;
+  m.builder.Reset(pair.goal_m);
+
+  const int every = m.rules.trajectory_every_n_steps;
+  const long reserve_steps =
+      std::min(m.max_steps, std::lround(kTrajectoryReserve_s / m.rules.step_s));
+  m.metrics = TrialMetrics(m.window_steps, task.rocks.size() + task.trees.size(),
+                           m.contact_gap_steps,
+                           every > 0 ? static_cast<size_t>(reserve_steps / every) + 2 : 0);
+  m.progress = Progress();
+  const vehicles::VehicleState& s = m.vehicle->state();
+  if (every > 0) m.metrics.trajectory().push_back(MakeSample(0.0, s, m.progress.inputs));
+  m.metrics.StartPosition(s.pose_W.position.head<2>());
+  m.progress.final_goal_distance_m = (pair.goal_m - s.pose_W.position.head<2>()).norm();
+  m.observation_valid = false;
+  m.started = true;
+  if (m.rules.timings != nullptr) {
+    m.rules.timings->setup_s +=
+        std::chrono::duration<double>(Clock::now() - m.wall_start).count();
+  }
+}
+
+void Episode::Step(const controllers::Command& command) {
+  Impl& m = *impl_;
+  VB_DEMAND(m.started);
+  if (m.progress.done) return;
+  m.observation_valid = false;
+  if (!std::isfinite(command.throttle) || !std::isfinite(command.steering) ||
+      !std::isfinite(command.braking)) {
+    m.progress.status = TrialStatus::kSimError;
+    m.progress.message = "controller '" + m.spec.system + "' returned a non-finite command";
+    m.progress.decided = true;
+    m.Finish();
+    return;
+  }
+  m.progress.inputs.throttle = std::clamp(command.throttle, 0.0, 1.0);
+  m.progress.inputs.steering = std::clamp(command.steering, -1.0, 1.0);
+  m.progress.inputs.braking = std::clamp(command.braking, 0.0, 1.0);
+  try {
+    for (int i = 0; i < m.steps_per_period && !m.progress.done; ++i) m.PhysicsStep();
+  } catch (const std::exception& e) {
+    EndWithSimError(std::string("exception during stepping at t = ") + Fmt(m.Time()) +
+                    " s: " + e.what());
+  }
+}
+
+void Episode::EndWithSimError(const std::string& message) {
+  Impl& m = *impl_;
+  VB_DEMAND(m.started);
+  if (m.progress.done) return;
+  m.progress.status = TrialStatus::kSimError;
+  m.progress.message = message;
+  m.progress.decided = true;
+  m.Finish();
+}
+
+const controllers::Observation& Episode::Observe() {
+  Impl& m = *impl_;
+  VB_DEMAND(m.started);
+  if (!m.observation_valid) {
+    m.builder.Build(m.Time(), m.vehicle->state(), &m.observation);
+    m.observation_valid = true;
+  }
+  return m.observation;
+}
+
+bool Episode::Done() const { return impl_->progress.done; }
+
+TrialResult Episode::Result() const {
+  VB_DEMAND(impl_->started);
+  TrialResult r = impl_->MakeResult();
+  r.trajectory = impl_->metrics.trajectory();
+  return r;
+}
+
+TrialResult Episode::TakeResult() {
+  VB_DEMAND(impl_->started);
+  TrialResult r = impl_->MakeResult();
+  r.trajectory = std::move(impl_->metrics.trajectory());
+  impl_->metrics.trajectory().clear();
+  return r;
+}
+
+const controllers::EpisodeContext& Episode::context() const { return impl_->context; }
+double Episode::time_s() const { return impl_->Time(); }
+long Episode::physics_steps() const { return impl_->progress.k; }
+int Episode::steps_per_control_period() const { return impl_->steps_per_period; }
+const vehicles::VehicleState& Episode::vehicle_state() const {
+  VB_DEMAND(impl_->started);
+  return impl_->vehicle->state();
+}
+const EpisodeRules& Episode::rules() const { return impl_->rules; }
+const terrain::TaskSpec& Episode::task() const { return impl_->task; }
 
 }  // namespace vb::runner

@@ -1,4 +1,6 @@
-// One trial: task + pair + vehicle + system + seed -> status, metrics and a trajectory.
+// The episode: one trial of a task + pair + vehicle + system + seed, as an object that can be
+// stepped, observed, snapshotted and restored (docs/architecture.md "Episode"); RunTrial is a
+// short loop over it with a controller.
 // Episode rules (docs/architecture.md §4): success when the reference point is within
 // 10 m * scale (planar) of the goal before 60 s; otherwise at the end: rollover (|roll| > 30 deg),
 // stuck (moved <= 1 m * scale in the last 10 s), timeout, or sim_error (numerical trouble).
@@ -6,12 +8,15 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "vb/controllers/controller.h"
+#include "vb/engine/fixed_vector.h"
 #include "vb/soil/soil_params.h"
 #include "vb/terrain/task.h"
+#include "vb/vehicles/vehicle.h"
 #include "vb/vehicles/vehicle_params.h"
 
 namespace vb::runner {
@@ -40,6 +45,10 @@ struct StepTimings {
 
 struct EpisodeRules {
   double step_s = 0.005;               // physics step (as the original)
+  // Time one Episode::Step advances with its command held: a whole number of physics steps.
+  // RunTrial calls its controller every physics step (the original's 200 Hz loop; controllers
+  // keep their own slower rates inside); the gym interface defaults to 0.1 s.
+  double control_period_s = 0.005;
   double time_limit_s = 60.0;
   double goal_radius_m = 10.0;         // scaled by task.scale
   double rollover_roll_rad = 30.0 * kPi / 180.0;
@@ -47,7 +56,7 @@ struct EpisodeRules {
   double stuck_distance_m = 1.0;       // scaled by task.scale
   double start_height_m = 0.5;         // drop height of the wheel bottoms above the terrain
   bool end_early = true;               // stop once the failure is certain
-  int trajectory_every_n_steps = 1;    // trajectory decimation
+  int trajectory_every_n_steps = 1;    // trajectory decimation; 0: no trajectory at all
   StepTimings* timings = nullptr;      // if set, the loop adds its wall-clock breakdown here
 };
 
@@ -57,6 +66,9 @@ struct TrialSpec {
   std::string system = "pid";
   std::string vehicle = "hmmwv";
 };
+
+// Most wheels (or road wheels) a vehicle may have: per-step wheel records are stored inline.
+constexpr size_t kMaxWheels = 16;
 
 // One row of the per-step trajectory.
 struct TrajectorySample {
@@ -69,8 +81,8 @@ struct TrajectorySample {
   double steering = 0.0;
   double braking = 0.0;
   int gear = 0;
-  std::vector<int> wheel_surface;       // SurfaceClass id under each wheel, -1 if airborne
-  std::vector<double> wheel_sinkage_m;
+  FixedVector<int, kMaxWheels> wheel_surface;        // SurfaceClass id under each wheel, -1 airborne
+  FixedVector<double, kMaxWheels> wheel_sinkage_m;
 };
 
 // Aggregates of a signal over the trial (all steps).
@@ -97,10 +109,62 @@ struct TrialResult {
   std::vector<TrajectorySample> trajectory;
 };
 
-// Runs one trial. Never throws for numerical trouble (that is kSimError); throws InputError only
-// for a trial that cannot be set up (pair index out of range, unknown system, a task with
-// deformable patches but no soil parameters). `soil` (loaded by io::LoadSoil) is needed only
-// when the task has mud, sand or snow patches.
+class Episode {
+ public:
+  // Builds the static world of `task` (terrain, ground-truth maps, planning grid). The task,
+  // vehicle parameters and soil configuration are kept by reference and must outlive the
+  // episode. Throws InputError for what cannot run: bad rules, a task with deformable patches but
+  // no soil parameters, more wheels than kMaxWheels.
+  Episode(const terrain::TaskSpec& task, const vehicles::VehicleParams& vehicle,
+          const EpisodeRules& rules = EpisodeRules(), const soil::SoilConfig* soil = nullptr);
+  ~Episode();
+  Episode(const Episode&) = delete;
+  Episode& operator=(const Episode&) = delete;
+
+  // What Observe() builds besides the robot state and navigation (crops); keeps across Reset.
+  void SetObservationConfig(const controllers::ObservationConfig& config);
+
+  // Starts a trial of pair spec.pair_index with spec.seed: the vehicle facing the goal, dropped
+  // from the start height; time 0. Throws InputError for a pair index out of range.
+  void Reset(const TrialSpec& spec);
+
+  // Applies `command` (clamped to its ranges) for one control period, or until the episode ends
+  // within it. A non-finite command ends the trial as sim_error. No effect once Done().
+  void Step(const controllers::Command& command);
+
+  // The observation of the current state (built on first call after Reset/Step/Restore).
+  const controllers::Observation& Observe();
+
+  bool Done() const;
+  // The trial as it stands: when Done(), its final result; before, the outcome it would have if
+  // it ended now. Wall time and real-time factor count from Reset.
+  TrialResult Result() const;
+  // As Result(), but moves the trajectory out (the episode's own is left empty): the cheap way
+  // to end a trial.
+  TrialResult TakeResult();
+
+  // Ends the trial now as sim_error with `message` (e.g. the controller failed).
+  void EndWithSimError(const std::string& message);
+
+  // What a controller knows when the trial starts (valid after Reset).
+  const controllers::EpisodeContext& context() const;
+  double time_s() const;
+  long physics_steps() const;
+  int steps_per_control_period() const;
+  const vehicles::VehicleState& vehicle_state() const;
+  const EpisodeRules& rules() const;
+  const terrain::TaskSpec& task() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// Runs one trial: RunTrial = Episode + the controller named by spec.system, stepped every physics
+// step until the trial is decided. Never throws for numerical trouble (that is kSimError); throws
+// InputError only for a trial that cannot be set up (pair index out of range, unknown system, a
+// task with deformable patches but no soil parameters). `soil` (loaded by io::LoadSoil) is needed
+// only when the task has mud, sand or snow patches.
 TrialResult RunTrial(const terrain::TaskSpec& task, const vehicles::VehicleParams& vehicle,
                      const TrialSpec& spec, const EpisodeRules& rules = EpisodeRules(),
                      const soil::SoilConfig* soil = nullptr);

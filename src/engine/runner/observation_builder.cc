@@ -1,0 +1,102 @@
+// Observation builder: the navigation follows the original's path followers (reference
+// §4.6, §7.1): A* on the inflated grid from the current position every 0.1 s (read off the
+// cost-to-goal field, as optimal as a search), a failed plan keeps the previous path, and the
+// local goal is the look-ahead point (terrain::LookAheadPoint).
+#include "vb/engine/runner/observation_builder.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace vb::runner {
+
+namespace {
+
+// Observation times are k * step_s, so "t - last >= 0.1" can miss by one ulp and replan one step
+// late (21 steps instead of 20). The tolerance makes the period exact in steps.
+constexpr double kReplanTimeTolerance_s = 1e-9;
+
+}  // namespace
+
+ObservationBuilder::ObservationBuilder(const terrain::GroundTruthMaps& maps,
+                                       const terrain::OccupancyGrid& inflated, double scale)
+    : maps_(maps), inflated_(inflated), scale_(scale) {}
+
+void ObservationBuilder::SetConfig(const controllers::ObservationConfig& config) {
+  config_ = config;
+}
+
+void ObservationBuilder::Reset(const Vec2& goal_m) {
+  goal_m_ = goal_m;
+  if (!field_goal_m_ || *field_goal_m_ != goal_m) {
+    goal_field_.reset();
+    if (inflated_.rows > 0) goal_field_.emplace(inflated_, inflated_.CellOf(goal_m));
+    field_goal_m_ = goal_m;
+  }
+  nav_.path_m.clear();
+  nav_.local_goal_index = 0;
+  nav_.last_replan_s = -1e9;
+  nav_.replan_count = 0;
+}
+
+void ObservationBuilder::Build(double t_s, const vehicles::VehicleState& s,
+                               controllers::Observation* obs) {
+  // Robot state.
+  obs->time_s = t_s;
+  obs->position_W = s.pose_W.position;
+  obs->rpy = s.rpy;
+  obs->velocity_W = s.velocity_W;
+  obs->angular_velocity_B = s.pose_W.rotation.conjugate() * s.angular_velocity_W;
+  obs->forward_speed_mps = s.forward_speed_mps;
+  obs->gear = s.gear;
+  obs->engine_speed_radps = s.engine_speed_radps;
+  obs->wheels.resize(s.wheels.size());
+  for (size_t i = 0; i < s.wheels.size(); ++i) {
+    const vehicles::WheelState& w = s.wheels[i];
+    controllers::WheelObservation& o = obs->wheels[i];
+    o.in_contact = w.in_contact;
+    o.surface = w.in_contact ? static_cast<int>(w.surface) : -1;
+    o.normal_force_n = w.normal_force_n;
+    o.sinkage_m = w.sinkage_m;
+    o.spin_radps = w.spin_radps;
+    o.slip = w.longitudinal_slip;
+  }
+
+  // Navigation: the global path from the current position every replan period; a failed plan
+  // keeps the previous path (the original's behaviour).
+  const Vec2 position_m = s.pose_W.position.head<2>();
+  if (t_s - nav_.last_replan_s >= config_.replan_period_s - kReplanTimeTolerance_s) {
+    nav_.last_replan_s = t_s;
+    if (goal_field_) {
+      ++nav_.replan_count;
+      std::optional<std::vector<Vec2>> plan = goal_field_->PathFrom(position_m);
+      if (plan && !plan->empty()) {
+        nav_.path_m = std::move(*plan);
+        nav_.local_goal_index = 0;
+      }
+    }
+  }
+  // Without any path (no planning grid, or the goal unreachable from the first position), the
+  // goal itself is the path: head straight for it rather than stand still.
+  if (nav_.path_m.empty()) {
+    nav_.path_m.push_back(goal_m_);
+    nav_.local_goal_index = 0;
+  }
+  obs->goal_m = goal_m_;
+  obs->goal_distance_m = (goal_m_ - position_m).norm();
+  obs->local_goal_m = terrain::LookAheadPoint(nav_.path_m, position_m, s.rpy.yaw_rad,
+                                              config_.lookahead_m * scale_,
+                                              &nav_.local_goal_index);
+  const Vec2 to_goal = obs->local_goal_m - position_m;
+  obs->heading_error_rad = WrapAngle(std::atan2(to_goal.y(), to_goal.x()) - s.rpy.yaw_rad);
+  obs->global_path_m = &nav_.path_m;
+
+  // Maps.
+  obs->crops.resize(config_.crops.size());
+  for (size_t i = 0; i < config_.crops.size(); ++i) {
+    const controllers::CropSpec& c = config_.crops[i];
+    maps_.CropInto(c.layer, position_m, s.rpy.yaw_rad, c.size_cells, c.resolution_m * scale_,
+                   &obs->crops[i]);
+  }
+}
+
+}  // namespace vb::runner

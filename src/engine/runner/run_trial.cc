@@ -1,0 +1,68 @@
+// RunTrial: a short loop over Episode with the controller named by the trial spec, called every
+// physics step (the original's 200 Hz loop; controllers keep their own rates inside).
+#include <chrono>
+#include <cstdio>
+#include <exception>
+#include <memory>
+#include <string>
+
+#include "vb/engine/error.h"
+#include "vb/engine/runner/episode.h"
+
+namespace vb::runner {
+
+namespace {
+
+std::unique_ptr<controllers::Controller> MakeSystem(const std::string& name) {
+  std::unique_ptr<controllers::Controller> c = controllers::MakeController(name);
+  if (c) return c;
+  std::string valid;
+  for (const std::string& n : controllers::ControllerNames()) {
+    valid += (valid.empty() ? "" : ", ") + n;
+  }
+  throw InputError("", 0, "system", "unknown system '" + name + "'; valid: " + valid);
+}
+
+std::string Fmt(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof(buf), "%.4g", x);
+  return buf;
+}
+
+}  // namespace
+
+TrialResult RunTrial(const terrain::TaskSpec& task, const vehicles::VehicleParams& vehicle,
+                     const TrialSpec& spec, const EpisodeRules& rules,
+                     const soil::SoilConfig* soil) {
+  using Clock = std::chrono::steady_clock;
+  const auto wall_start = Clock::now();
+  Episode episode(task, vehicle, rules, soil);
+  std::unique_ptr<controllers::Controller> controller = MakeSystem(spec.system);
+  episode.SetObservationConfig(controller->observation_config());
+  episode.Reset(spec);
+  controller->Reset(episode.context());
+
+  StepTimings* const timings = rules.timings;
+  while (!episode.Done()) {
+    const auto t0 = timings != nullptr ? Clock::now() : Clock::time_point();
+    controllers::Command command;
+    try {
+      command = controller->Update(episode.Observe());
+    } catch (const std::exception& e) {
+      episode.EndWithSimError(std::string("exception during stepping at t = ") +
+                              Fmt(episode.time_s()) + " s: " + e.what());
+      break;
+    }
+    if (timings != nullptr) {
+      timings->controller_s += std::chrono::duration<double>(Clock::now() - t0).count();
+    }
+    episode.Step(command);
+  }
+
+  TrialResult result = episode.TakeResult();
+  result.wall_time_s = std::chrono::duration<double>(Clock::now() - wall_start).count();
+  result.real_time_factor = result.wall_time_s > 0.0 ? result.sim_time_s / result.wall_time_s : 0.0;
+  return result;
+}
+
+}  // namespace vb::runner
