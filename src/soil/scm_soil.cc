@@ -502,4 +502,65 @@ const ScmStats& ScmSoil::stats() const {
   return impl_->stats;
 }
 
+// Snapshot: everything that carries from one step to the next. The per-step scratch (this step's
+// contacts, patches, hits, the rim list) is empty between steps.
+struct SoilSnapshot::Data {
+  std::vector<Tile> tiles;        // allocation order
+  std::vector<int32_t> tile_index;
+  int32_t step = 0;
+  ScmStats stats;
+  double max_raise_m = 0.0;
+  std::vector<ScmSoil::Impl::Work> pending;
+  int32_t queue_stamp = 0;
+};
+
+SoilSnapshot::SoilSnapshot() = default;
+SoilSnapshot::~SoilSnapshot() = default;
+SoilSnapshot::SoilSnapshot(const SoilSnapshot& other)
+    : data_(other.data_ ? std::make_unique<Data>(*other.data_) : nullptr) {}
+SoilSnapshot& SoilSnapshot::operator=(const SoilSnapshot& other) {
+  if (this != &other) data_ = other.data_ ? std::make_unique<Data>(*other.data_) : nullptr;
+  return *this;
+}
+
+SoilSnapshot ScmSoil::Snapshot() const {
+  const Impl& m = *impl_;
+  SoilSnapshot snapshot;
+  snapshot.data_ = std::make_unique<SoilSnapshot::Data>();
+  SoilSnapshot::Data& d = *snapshot.data_;
+  d.tiles.reserve(m.tiles.size());
+  for (const auto& tile : m.tiles) d.tiles.push_back(*tile);
+  d.tile_index = m.tile_index;
+  d.step = m.step;
+  d.stats = m.stats;
+  d.max_raise_m = m.max_raise_m;
+  d.pending = m.pending;
+  d.queue_stamp = m.queue_stamp;
+  return snapshot;
+}
+
+void ScmSoil::Restore(const SoilSnapshot& snapshot) {
+  VB_DEMAND(snapshot.data_ != nullptr);
+  const SoilSnapshot::Data& d = *snapshot.data_;
+  Impl& m = *impl_;
+  VB_DEMAND(d.tile_index.size() == m.tile_index.size());
+  if (m.tiles.size() > d.tiles.size()) m.tiles.resize(d.tiles.size());
+  for (size_t i = 0; i < d.tiles.size(); ++i) {
+    if (i < m.tiles.size()) {
+      *m.tiles[i] = d.tiles[i];
+    } else {
+      m.tiles.push_back(std::make_unique<Tile>(d.tiles[i]));
+    }
+  }
+  m.tile_index = d.tile_index;
+  m.step = d.step;
+  m.stats = d.stats;
+  m.max_raise_m = d.max_raise_m;
+  m.pending = d.pending;
+  m.queue_stamp = d.queue_stamp;
+  m.contacts.clear();
+  m.patches.clear();
+  m.hits.clear();
+}
+
 }  // namespace vb::soil

@@ -7,6 +7,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "vb/engine/convex_shape.h"
+#include "vb/engine/error.h"
+#include "vb/terrain/body_contact.h"
 #include "vb/vehicles/powertrain.h"
 #include "vb/vehicles/suspension_kinematics.h"
 #include "vb/vehicles/tire_contact.h"
@@ -81,11 +84,60 @@ double StopForce(const SuspensionParams& su, double deflection_m) {
 // Hard end of travel (Bullet joint limit) beyond the stop table, as a last resort only.
 constexpr double kHardLimitBeyondStops_m = 0.03;
 
+// Body-body contact (terrain/body_contact.h). The envelope's surface friction (painted steel on
+// rock or ground), combined with the other surface's by the minimum.
+constexpr double kBodyFriction = 0.8;
+// Contacts kept per envelope piece and ground, per piece and obstacle, per wheel and obstacle: a
+// well-spread support polygon is enough for the solver.
+constexpr int kMaxGroundContactsPerPiece = 8;
+constexpr int kMaxObstacleContactsPerPiece = 8;
+constexpr int kMaxObstacleContactsPerWheel = 4;
+
 }  // namespace
+
+// The chassis envelope as convex shapes: sampled finely for obstacles (0.1 wheel radius: a rock's
+// edge meets the body anywhere) and coarsely for the ground (a quarter of the terrain grid: the
+// ground is piecewise linear between its vertices, which are tested themselves), and the posed
+// copies of the current step.
+struct Vehicle::Body {
+  std::vector<engine::ConvexShape> for_ground_B, for_obstacles_B;
+  engine::ConvexShape posed;   // scratch
+  terrain::ContactScratch scratch;
+  std::vector<terrain::BodyContact> contacts;
+};
+
+struct VehicleSnapshot::Data {
+  engine::MultiBodyState body;
+  Vehicle::Internals internals;
+  DriverInputs inputs;
+  VehicleState state;
+};
+
+VehicleSnapshot::VehicleSnapshot() = default;
+VehicleSnapshot::~VehicleSnapshot() = default;
+VehicleSnapshot::VehicleSnapshot(const VehicleSnapshot& other)
+    : data_(other.data_ ? std::make_unique<Data>(*other.data_) : nullptr) {}
+VehicleSnapshot& VehicleSnapshot::operator=(const VehicleSnapshot& other) {
+  if (this != &other) data_ = other.data_ ? std::make_unique<Data>(*other.data_) : nullptr;
+  return *this;
+}
 
 Vehicle::Vehicle(const VehicleParams& params, const terrain::Terrain& terrain, const Pose& pose_W,
                  engine::PhysicsWorld* world)
-    : params_(params), terrain_(terrain), world_(world), in_(std::make_unique<Internals>()) {
+    : params_(params),
+      terrain_(terrain),
+      world_(world),
+      in_(std::make_unique<Internals>()),
+      body_contact_(std::make_unique<Body>()) {
+  const double ground_spacing_m =
+      0.25 * std::min(terrain.spacing_x_m(), terrain.spacing_y_m());
+  const double obstacle_spacing_m = 0.1 * params_.wheel.radius_m;
+  for (const EnvelopePiece& piece : params_.chassis.envelope) {
+    body_contact_->for_ground_B.push_back(
+        engine::MakeConvexHull(piece.points_B, ground_spacing_m, "chassis.envelope." + piece.name));
+    body_contact_->for_obstacles_B.push_back(engine::MakeConvexHull(
+        piece.points_B, obstacle_spacing_m, "chassis.envelope." + piece.name));
+  }
   // chassis plus the steering link (rides with the chassis): one rigid base body
   ChassisParams ch = params_.chassis;
   if (params_.steering.link_mass_kg > 0.0) {
@@ -102,13 +154,12 @@ Vehicle::Vehicle(const VehicleParams& params, const terrain::Terrain& terrain, c
   }
   in_->com_B = ch.com_B;
 
-  // chassis: base body at the COM, collision box offset from it
+  // chassis: base body at the COM
   engine::MultiBodyBaseSpec base;
   base.mass_kg = ch.mass_kg;
   base.inertia_kgm2 = ch.inertia_kgm2;
   base.pose_W.rotation = pose_W.rotation;
   base.pose_W.position = pose_W.position + pose_W.rotation * ch.com_B;
-  base.boxes.push_back({ch.collision_box_center_B - ch.com_B, ch.collision_box_size_m / 2.0});
 
   // wheels, axle-major, left then right; driven wheels also carry the driveline's shafts
   const int driven_axles = static_cast<int>(std::count_if(
@@ -174,9 +225,6 @@ Vehicle::Vehicle(const VehicleParams& params, const terrain::Terrain& terrain, c
       wheel.mass_kg = params_.wheel.mass_kg;
       wheel.inertia_kgm2 = params_.wheel.inertia_kgm2;
       if (axle.driven) wheel.inertia_kgm2.y() += driveline_inertia_per_wheel;
-      wheel.has_cylinder = true;
-      wheel.cylinder.radius_m = params_.wheel.radius_m;
-      wheel.cylinder.half_width_m = params_.wheel.width_m / 2.0;
       corner.wheel_link = static_cast<int>(links.size());
       links.push_back(wheel);
       in_->corners.push_back(corner);
@@ -195,7 +243,7 @@ Vehicle::Vehicle(const VehicleParams& params, const terrain::Terrain& terrain, c
     }
   }
 
-  body_ = world_->AddMultiBody(base, links, /*contact_friction=*/0.8);
+  body_ = world_->AddMultiBody(base, links);
   in_->corner_sprung_mass_kg = ch.mass_kg / static_cast<double>(in_->corners.size());
 
   const size_t n = in_->corners.size();
@@ -332,6 +380,66 @@ void Vehicle::Synchronize(double dt) {
     ws.normal_force_n = f.normal_force_n;
     ws.sinkage_m = 0.0;
   }
+  AddBodyContacts();
+}
+
+void Vehicle::AddBodyContacts() {
+  Body& b = *body_contact_;
+  b.contacts.clear();
+  const Pose com = world_->BasePose(body_);
+  Pose reference;
+  reference.rotation = com.rotation;
+  reference.position = com.position - com.rotation * in_->com_B;
+  for (size_t k = 0; k < b.for_ground_B.size(); ++k) {
+    b.for_ground_B[k].TransformInto(reference, &b.posed);
+    terrain::GroundContacts(b.posed, terrain_, kBodyFriction, kMaxGroundContactsPerPiece,
+                            &b.scratch, &b.contacts);
+    if (obstacles_ != nullptr) {
+      b.for_obstacles_B[k].TransformInto(reference, &b.posed);
+      terrain::ObstacleContacts(b.posed, *obstacles_, kBodyFriction, kMaxObstacleContactsPerPiece,
+                                &b.scratch, &b.contacts);
+    }
+  }
+  state_.body_ground_contacts = 0;
+  state_.body_obstacle_contacts = 0;
+  for (const terrain::BodyContact& c : b.contacts) {
+    world_->AddContact({body_, -1, c.point_W, c.normal_W, c.depth_m, c.friction, c.obstacle_tag});
+    ++(c.obstacle_tag < 0 ? state_.body_ground_contacts : state_.body_obstacle_contacts);
+  }
+  if (obstacles_ == nullptr) return;
+  for (const Internals::Corner& corner : in_->corners) {
+    b.contacts.clear();
+    const Pose wheel = world_->LinkPose(body_, corner.wheel_link);
+    terrain::WheelObstacleContacts(wheel.position, wheel.rotation * Vec3::UnitY(),
+                                   params_.wheel.radius_m, 0.5 * params_.wheel.width_m, *obstacles_,
+                                   params_.tire.friction, kMaxObstacleContactsPerWheel, &b.scratch,
+                                   &b.contacts);
+    for (const terrain::BodyContact& c : b.contacts) {
+      world_->AddContact({body_, corner.wheel_link, c.point_W, c.normal_W, c.depth_m, c.friction,
+                          c.obstacle_tag});
+    }
+  }
+}
+
+VehicleSnapshot Vehicle::Snapshot() const {
+  VehicleSnapshot snapshot;
+  snapshot.data_ = std::make_unique<VehicleSnapshot::Data>(
+      VehicleSnapshot::Data{world_->GetState(body_), *in_, inputs_, state_});
+  return snapshot;
+}
+
+void Vehicle::Restore(const VehicleSnapshot& snapshot) {
+  VB_DEMAND(snapshot.data_ != nullptr);
+  const VehicleSnapshot::Data& d = *snapshot.data_;
+  VB_DEMAND(d.internals.corners.size() == in_->corners.size());
+  // The corners point at this vehicle's own axle parameters: keep those pointers.
+  std::vector<const AxleParams*> axles(in_->corners.size());
+  for (size_t i = 0; i < axles.size(); ++i) axles[i] = in_->corners[i].axle;
+  *in_ = d.internals;
+  for (size_t i = 0; i < axles.size(); ++i) in_->corners[i].axle = axles[i];
+  world_->SetState(body_, d.body);
+  inputs_ = d.inputs;
+  state_ = d.state;
 }
 
 void Vehicle::UpdateState() {

@@ -27,8 +27,8 @@ chassis:
   mass_kg: 2000.0
   inertia_kgm2: [500.0, 1500.0, 1800.0]
   com_B: [0.1, 0.0, 0.3]
-  collision_box_center_B: [0.0, 0.0, 0.5]
-  collision_box_size_m: [4.0, 2.0, 1.2]
+  envelope:
+    - {name: box, hull_m: [[2.0, 1.0, -0.1], [2.0, -1.0, -0.1], [-2.0, 1.0, -0.1], [-2.0, -1.0, -0.1], [2.0, 1.0, 1.1], [2.0, -1.0, 1.1], [-2.0, 1.0, 1.1], [-2.0, -1.0, 1.1]]}
 axles:
   - x_m: 1.6
     half_track_m: 0.9
@@ -156,8 +156,10 @@ TEST_F(VehicleIoTest, LoadsEveryField) {
   EXPECT_EQ(v.chassis.mass_kg, 2000.0);
   EXPECT_EQ(v.chassis.inertia_kgm2, Vec3(500.0, 1500.0, 1800.0));
   EXPECT_EQ(v.chassis.com_B, Vec3(0.1, 0.0, 0.3));
-  EXPECT_EQ(v.chassis.collision_box_center_B, Vec3(0.0, 0.0, 0.5));
-  EXPECT_EQ(v.chassis.collision_box_size_m, Vec3(4.0, 2.0, 1.2));
+  ASSERT_EQ(v.chassis.envelope.size(), 1u);
+  EXPECT_EQ(v.chassis.envelope[0].name, "box");
+  ASSERT_EQ(v.chassis.envelope[0].points_B.size(), 8u);
+  EXPECT_EQ(v.chassis.envelope[0].points_B[7], Vec3(-2.0, -1.0, 1.1));
   ASSERT_EQ(v.axles.size(), 2u);
   EXPECT_EQ(v.axles[0].x_m, 1.6);
   EXPECT_EQ(v.axles[0].half_track_m, 0.9);
@@ -202,6 +204,14 @@ TEST_F(VehicleIoTest, LoadsEveryField) {
   EXPECT_FALSE(v.driveline.lock_axle_differentials);
   EXPECT_TRUE(v.driveline.lock_central_differential);
   EXPECT_EQ(v.driveline.lock_torque_limit_nm, 1000.0);
+}
+
+TEST_F(VehicleIoTest, ErrorEnvelopeWithoutVolume) {
+  // all points in the plane z = 0
+  ExpectError(EditLine(7, "    - {name: flat, hull_m: [[1, 1, 0], [1, -1, 0], [-1, 1, 0], [-1, -1, 0], [0, 0, 0]]}"),
+              7, "chassis.envelope[0].hull_m", "no convex body: the points span no volume");
+  ExpectError(EditLine(7, "    - {name: few, hull_m: [[1, 1, 0], [1, -1, 0], [-1, 1, 1]]}"), 7,
+              "chassis.envelope[0].hull_m", "a list of 4 to 256 items");
 }
 
 TEST_F(VehicleIoTest, ErrorUnknownKey) {

@@ -9,7 +9,7 @@
 #include "support/worlds.h"
 #include "vb/engine/physics_world.h"
 #include "vb/terrain/terrain.h"
-#include "vb/terrain/terrain_physics.h"
+#include "vb/terrain/obstacle_field.h"
 #include "vb/vehicles/vehicle.h"
 
 namespace vb::test {
@@ -60,15 +60,16 @@ inline Pose PoseOnPlane(double x, double y, double sx, double sy, double yaw_rad
 struct VehicleSim {
   terrain::TaskSpec task;
   terrain::Terrain terrain;
+  terrain::ObstacleField obstacles;
   engine::PhysicsWorld world;
   vehicles::VehicleParams params;
   std::unique_ptr<vehicles::Vehicle> vehicle;
   double t = 0.0;
 
   VehicleSim(const terrain::TaskSpec& tk, const vehicles::VehicleParams& p, const Pose& pose)
-      : task(tk), terrain(task), params(p) {
-    terrain::AddTerrainToPhysics(task, terrain, &world);
+      : task(tk), terrain(task), obstacles(task, terrain), params(p) {
     vehicle = std::make_unique<vehicles::Vehicle>(params, terrain, pose, &world);
+    vehicle->SetObstacles(&obstacles);
   }
   void Step(const vehicles::DriverInputs& in, double dt = kStep_s) {
     vehicle->SetInputs(in);

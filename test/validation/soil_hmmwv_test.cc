@@ -43,7 +43,6 @@ struct Drive {
   Drive(SurfaceClass surface, double slope_rad, double x0) {
     task = test::PlaneTask(128.0, std::tan(slope_rad), 0.0, 0.8, surface);
     ground = std::make_unique<terrain::Terrain>(task);
-    terrain::AddTerrainToPhysics(task, *ground, &world);
     const vehicles::VehicleParams params = test::Hmmwv();
     Pose pose;
     pose.rotation = Quat(Eigen::AngleAxisd(-slope_rad, Vec3::UnitY()));

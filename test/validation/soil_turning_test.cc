@@ -79,7 +79,6 @@ Circle SteadyTurn(SurfaceClass surface, double steering, double speed_mps, doubl
   const terrain::TaskSpec task = test::PlaneTask(96.0, 0.0, 0.0, 0.9, surface);
   const terrain::Terrain ground(task);
   engine::PhysicsWorld world;
-  terrain::AddTerrainToPhysics(task, ground, &world);
   vehicles::Vehicle vehicle(p, ground, test::PoseOnPlane(0, -15, 0, 0, 0, p.wheel.radius_m, 0.01),
                             &world);
   std::unique_ptr<ScmSoil> soil;

@@ -7,7 +7,7 @@
 #include "support/worlds.h"
 #include "vb/engine/physics_world.h"
 #include "vb/terrain/terrain.h"
-#include "vb/terrain/terrain_physics.h"
+#include "vb/terrain/obstacle_field.h"
 #include "vb/vehicles/vehicle.h"
 
 namespace vb {
@@ -18,15 +18,16 @@ constexpr double kDt = 0.005;
 struct Sim {
   terrain::TaskSpec task;
   terrain::Terrain terrain;
+  terrain::ObstacleField obstacles;
   engine::PhysicsWorld world;
   vehicles::VehicleParams params;
   std::unique_ptr<vehicles::Vehicle> vehicle;
   double t = 0.0;
 
   explicit Sim(const terrain::TaskSpec& tk, const Pose& pose)
-      : task(tk), terrain(task), params(test::Hmmwv()) {
-    terrain::AddTerrainToPhysics(task, terrain, &world);
+      : task(tk), terrain(task), obstacles(task, terrain), params(test::Hmmwv()) {
     vehicle = std::make_unique<vehicles::Vehicle>(params, terrain, pose, &world);
+    vehicle->SetObstacles(&obstacles);
   }
   void Run(double seconds, const vehicles::DriverInputs& in) {
     const int n = static_cast<int>(std::lround(seconds / kDt));

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "io/yaml_strict.h"
+#include "vb/engine/convex_shape.h"
 #include "vb/engine/error.h"
 
 namespace vb::io {
@@ -18,15 +19,38 @@ using vehicles::VehicleParams;
 // The YAML schema is the struct: keys are exactly the field names of vehicle_params.h, with the
 // same nesting, and every field is required so a file always states the whole vehicle.
 
+// Envelope pieces: a name and the points whose convex hull is the piece. The hull is computed here
+// once to reject degenerate pieces (flat, collinear) with the file and line; the vehicle computes
+// it again when it is built.
+std::vector<vehicles::EnvelopePiece> ReadEnvelope(const StrictNode& node) {
+  std::vector<vehicles::EnvelopePiece> pieces;
+  for (const StrictNode& item : node.AsList(1, 16)) {
+    const StrictMap m = item.AsMap({"name", "hull_m"});
+    vehicles::EnvelopePiece piece;
+    piece.name = m.Required("name").AsString();
+    const StrictNode hull = m.Required("hull_m");
+    for (const StrictNode& point : hull.AsList(4, 256)) {
+      const Vec3 p = point.AsVec3();
+      if (p.cwiseAbs().maxCoeff() > 100.0) point.Fail("points must lie within 100 m of the origin");
+      piece.points_B.push_back(p);
+    }
+    engine::ConvexShape shape;
+    std::string error;
+    if (!engine::TryMakeConvexHull(piece.points_B, 0.05, &shape, &error)) {
+      hull.Fail("no convex body: " + error);
+    }
+    pieces.push_back(piece);
+  }
+  return pieces;
+}
+
 vehicles::ChassisParams ReadChassis(const StrictNode& node) {
-  const StrictMap m = node.AsMap(
-      {"mass_kg", "inertia_kgm2", "com_B", "collision_box_center_B", "collision_box_size_m"});
+  const StrictMap m = node.AsMap({"mass_kg", "inertia_kgm2", "com_B", "envelope"});
   vehicles::ChassisParams p;
   p.mass_kg = m.Required("mass_kg").AsPositive();
   p.inertia_kgm2 = m.Required("inertia_kgm2").AsPositiveVec3();
   p.com_B = m.Required("com_B").AsVec3();
-  p.collision_box_center_B = m.Required("collision_box_center_B").AsVec3();
-  p.collision_box_size_m = m.Required("collision_box_size_m").AsPositiveVec3();
+  p.envelope = ReadEnvelope(m.Required("envelope"));
   return p;
 }
 

@@ -1,10 +1,14 @@
 // The dynamics/collision adapter: the only door to Bullet. Everything above the engine core talks
 // to rigid and articulated bodies through this class, in vb types; no Bullet type escapes.
 //
-// What Bullet does for vb: articulated vehicles (btMultiBody, Featherstone), body-body contact
-// (chassis and wheels against rocks and trees, chassis against the terrain mesh), joint limits and
-// implicit joint motors (brakes, steering). What it does NOT do: wheel-ground contact, which vb
-// computes itself from the terrain query and applies as external forces (docs/architecture.md).
+// What Bullet does for vb: articulated vehicles (btMultiBody, Featherstone) and their constraint
+// solver: joint limits, implicit joint motors (brakes, steering) and the body-body contacts that
+// vb generates itself each step (AddContact: chassis against the terrain and the obstacles, wheels
+// against the obstacles; terrain/body_contact.h), solved as non-penetration and Coulomb friction
+// constraints. What it does NOT do: collision detection (Bullet's broadphase, contact caches and
+// meshes are not used, so a step depends only on the bodies' state: GetState/SetState restore it
+// bit for bit) and wheel-ground contact, which vb computes from the terrain query and applies as
+// external forces (docs/architecture.md).
 #pragma once
 
 #include <memory>
@@ -14,28 +18,13 @@
 
 namespace vb::engine {
 
-// Collision groups: wheels collide only with obstacles (the ground under a wheel is vb's own
-// contact model), chassis-like bodies collide with both the terrain mesh and obstacles.
-enum class CollisionGroup : int { kTerrain = 1, kObstacle = 2, kChassis = 4, kWheel = 8 };
-
 enum class JointType { kRevolute, kPrismatic };
-
-struct BoxShape {
-  Vec3 center_B = Vec3::Zero();   // box centre in the body frame (m)
-  Vec3 half_extents_m = Vec3::Ones();
-};
-
-struct CylinderShape {
-  double radius_m = 0.5;
-  double half_width_m = 0.1;      // along the body y axis (wheel spin axis)
-};
 
 // Base body of an articulated system. Its frame is the body's centre of mass frame.
 struct MultiBodyBaseSpec {
   double mass_kg = 1.0;
   Vec3 inertia_kgm2 = Vec3::Ones();  // principal moments about the COM axes
   Pose pose_W;                       // initial COM pose in world
-  std::vector<BoxShape> boxes;       // collision boxes (collide with terrain mesh and obstacles)
 };
 
 // One link attached to its parent (-1 = base) through a single-DoF joint.
@@ -50,9 +39,6 @@ struct MultiBodyLinkSpec {
   // Optional joint limits (prismatic: m; revolute: rad); lower > upper means none.
   double limit_lower = 1.0;
   double limit_upper = -1.0;
-  // Optional collision cylinder (wheels): collides with obstacles only.
-  bool has_cylinder = false;
-  CylinderShape cylinder;
 };
 
 // Handle to an articulated body owned by the world.
@@ -64,6 +50,29 @@ struct ObstacleContact {
   int obstacle_tag = -1;
 };
 
+// A unilateral contact of a body with the static world for the next step (from vb's own contact
+// generation): non-penetration along normal_W with Coulomb friction, solved implicitly with the
+// joints. The static side is the point point_W + normal_W * depth_m.
+struct ContactConstraint {
+  MultiBodyId body = -1;
+  int link = -1;                  // -1: the base
+  Vec3 point_W = Vec3::Zero();    // on the body's surface
+  Vec3 normal_W = Vec3::UnitZ();  // unit: the direction the contact pushes the body
+  double depth_m = 0.0;           // penetration (>= 0)
+  double friction = 0.8;
+  int obstacle_tag = -1;          // reported in ObstacleContacts when >= 0
+};
+
+// The full dynamic state of an articulated body: what a snapshot must keep.
+struct MultiBodyState {
+  Vec3 base_position_W = Vec3::Zero();   // COM of the base
+  Quat base_rotation = Quat::Identity();
+  Vec3 base_velocity_W = Vec3::Zero();
+  Vec3 base_angular_velocity_W = Vec3::Zero();
+  std::vector<double> q;      // joint coordinates, one per link
+  std::vector<double> qdot;
+};
+
 class PhysicsWorld {
  public:
   explicit PhysicsWorld(double gravity_mps2 = kGravity);
@@ -71,16 +80,8 @@ class PhysicsWorld {
   PhysicsWorld(const PhysicsWorld&) = delete;
   PhysicsWorld& operator=(const PhysicsWorld&) = delete;
 
-  // Static geometry. The terrain mesh is given as vertices and triangle vertex indices (counter-
-  // clockwise seen from above). Obstacles carry a tag reported back in ObstacleContact.
-  void AddTerrainMesh(const std::vector<Vec3>& vertices_W, const std::vector<int>& triangles,
-                      double friction);
-  void AddStaticBox(const Pose& pose_W, const Vec3& half_extents_m, double friction,
-                    int obstacle_tag);
-
   // Articulated bodies. Link i of the returned body is links[i].
-  MultiBodyId AddMultiBody(const MultiBodyBaseSpec& base, const std::vector<MultiBodyLinkSpec>& links,
-                           double contact_friction);
+  MultiBodyId AddMultiBody(const MultiBodyBaseSpec& base, const std::vector<MultiBodyLinkSpec>& links);
 
   // Sets the initial joint coordinates (after AddMultiBody, before the first Step).
   void SetJointPosition(MultiBodyId mb, int link, double q);
@@ -109,11 +110,19 @@ class PhysicsWorld {
   double JointPosition(MultiBodyId mb, int link) const;
   double JointVelocity(MultiBodyId mb, int link) const;
 
+  // A contact for the next Step only.
+  void AddContact(const ContactConstraint& contact);
+
   // Advances by dt seconds (exactly one internal step).
   void Step(double dt);
 
-  // Contacts with obstacles found during the last Step (deterministic order).
+  // Bodies touching obstacles during the last Step (sorted by body, then tag; no repeats).
   const std::vector<ObstacleContact>& ObstacleContacts() const;
+
+  // Snapshot and restore of a body's dynamic state. A world whose bodies were all restored steps
+  // exactly as the world the states came from (motor targets and forces are set anew every step).
+  MultiBodyState GetState(MultiBodyId mb) const;
+  void SetState(MultiBodyId mb, const MultiBodyState& state);
 
   // False if any body state is NaN/inf (numerical trouble; the caller ends the trial).
   bool StateIsFinite() const;

@@ -31,6 +31,24 @@ struct ScmStats {
   size_t memory_bytes = 0;     // tiles + tile index
 };
 
+class ScmSoil;
+
+// The soil's deformation state (opaque): every allocated tile, the tile table, the step counter
+// and the erosion work carried over to the next step. Made by ScmSoil::Snapshot between steps;
+// restored by ScmSoil::Restore into a solver of the same terrain and configuration.
+class SoilSnapshot {
+ public:
+  SoilSnapshot();
+  ~SoilSnapshot();
+  SoilSnapshot(const SoilSnapshot& other);
+  SoilSnapshot& operator=(const SoilSnapshot& other);
+
+ private:
+  friend class ScmSoil;
+  struct Data;
+  std::unique_ptr<Data> data_;
+};
+
 class ScmSoil : public SoilContact {
  public:
   // Throws InputError if the terrain has a deformable class the config does not describe, or the
@@ -49,10 +67,15 @@ class ScmSoil : public SoilContact {
   // Sum over touched nodes of plastic sinkage * cell area (m^3): the compaction so far.
   double CompactedVolume_m3() const;
   const ScmStats& stats() const;
+
+  // Between steps (after EndStep): copies of the touched tiles only.
+  SoilSnapshot Snapshot() const;
+  void Restore(const SoilSnapshot& snapshot);
   const SoilConfig& config() const { return config_; }
   double spacing_m() const { return config_.grid_spacing_m; }
 
  private:
+  friend class SoilSnapshot;
   struct Impl;
   SoilConfig config_;
   std::unique_ptr<Impl> impl_;

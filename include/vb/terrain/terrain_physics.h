@@ -1,8 +1,7 @@
-// Puts a task's static world into the physics adapter: the terrain mesh and one box per rock and
-// tree (tags: rock i -> i, tree j -> 1000 + j).
+// Obstacle geometry of a task: the box sizes of rocks and trees and their resting height (the
+// obstacles themselves are terrain::ObstacleField; tags: rock i -> i, tree j -> 1000 + j).
 #pragma once
 
-#include "vb/engine/physics_world.h"
 #include "vb/terrain/task.h"
 #include "vb/terrain/terrain.h"
 
@@ -23,7 +22,5 @@ inline Vec3 TreeBoxSize(const TaskSpec& task) { return TreeBoxSize() * task.scal
 // under its footprint (a square of full side footprint_m centred at (x, y), axis-aligned as the
 // boxes are). The box then touches the ground at its lowest point and nowhere hangs above it.
 double ObstacleBaseHeight(const Terrain& terrain, double x_m, double y_m, double footprint_m);
-
-void AddTerrainToPhysics(const TaskSpec& task, const Terrain& terrain, engine::PhysicsWorld* world);
 
 }  // namespace vb::terrain

@@ -9,6 +9,7 @@
 #include "vb/engine/physics_world.h"
 #include "vb/engine/types.h"
 #include "vb/soil/soil_contact.h"
+#include "vb/terrain/obstacle_field.h"
 #include "vb/terrain/surface_class.h"
 #include "vb/terrain/terrain.h"
 #include "vb/vehicles/vehicle_params.h"
@@ -44,7 +45,29 @@ struct VehicleState {
   int gear = 1;
   double engine_speed_radps = 0.0;
   double engine_torque_nm = 0.0;
+  // Contacts of the chassis envelope generated for the last step: with the ground (a belly on a
+  // crest, a body on its side) and with rocks and trees.
+  int body_ground_contacts = 0;
+  int body_obstacle_contacts = 0;
   std::vector<WheelState> wheels;   // axle-major: axle 0 left, axle 0 right, axle 1 left, ...
+};
+
+class Vehicle;
+
+// A vehicle's complete dynamic state: the multibody state and every internal state (tire
+// bristles and relaxation, powertrain, inputs). Opaque; made by Vehicle::Snapshot, restored by
+// Vehicle::Restore into a vehicle built from the same parameters.
+class VehicleSnapshot {
+ public:
+  VehicleSnapshot();
+  ~VehicleSnapshot();
+  VehicleSnapshot(const VehicleSnapshot& other);
+  VehicleSnapshot& operator=(const VehicleSnapshot& other);
+
+ private:
+  friend class Vehicle;
+  struct Data;
+  std::unique_ptr<Data> data_;
 };
 
 class Vehicle {
@@ -58,6 +81,9 @@ class Vehicle {
   // Deformable ground (nullable, not owned, must outlive the vehicle). Wheels the soil claims get
   // the soil's force and torque; all others use the vehicle's tire model on the rigid terrain.
   void SetSoil(soil::SoilContact* soil) { soil_ = soil; }
+  // Rocks and trees the chassis envelope and the wheels can hit (nullable, not owned, must outlive
+  // the vehicle). The ground contact of the envelope needs nothing: it uses the terrain.
+  void SetObstacles(const terrain::ObstacleField* obstacles) { obstacles_ = obstacles; }
 
   void SetInputs(const DriverInputs& inputs);
   // Computes and applies this step's forces (call right before world.Step(dt)).
@@ -65,21 +91,32 @@ class Vehicle {
   // Reads the post-step state (call right after world.Step(dt)).
   void UpdateState();
 
+  VehicleSnapshot Snapshot() const;
+  // Continues from `snapshot` (which must come from a vehicle with the same parameters).
+  void Restore(const VehicleSnapshot& snapshot);
+
   const VehicleState& state() const { return state_; }
   const VehicleParams& params() const { return params_; }
   const DriverInputs& inputs() const { return inputs_; }
   engine::MultiBodyId body() const { return body_; }
 
  private:
+  friend class VehicleSnapshot;
   struct Internals;
+  struct Body;
+  // Contacts of the chassis envelope with the ground and the obstacles, and of the wheels with
+  // the obstacles, for the coming step (vb's own contact generation, terrain/body_contact.h).
+  void AddBodyContacts();
   VehicleParams params_;
   const terrain::Terrain& terrain_;
   engine::PhysicsWorld* world_;
   soil::SoilContact* soil_ = nullptr;
+  const terrain::ObstacleField* obstacles_ = nullptr;
   engine::MultiBodyId body_ = -1;
   DriverInputs inputs_;
   VehicleState state_;
   std::unique_ptr<Internals> in_;
+  std::unique_ptr<Body> body_contact_;
 };
 
 }  // namespace vb::vehicles

@@ -12,12 +12,20 @@
 
 namespace vb::vehicles {
 
+// One convex piece of the chassis envelope: the convex hull of its points (chassis reference
+// frame, m). The envelope is what of the body touches the ground and the obstacles (wheels have
+// their own contact); a few pieces describe a body with wheel wells (a belly between the wheels,
+// a body above them).
+struct EnvelopePiece {
+  std::string name;
+  std::vector<Vec3> points_B;
+};
+
 struct ChassisParams {
   double mass_kg = 0.0;
   Vec3 inertia_kgm2 = Vec3::Zero();     // principal moments about the COM
   Vec3 com_B = Vec3::Zero();            // COM in the chassis reference frame
-  Vec3 collision_box_center_B = Vec3::Zero();
-  Vec3 collision_box_size_m = Vec3::Zero();  // full lengths
+  std::vector<EnvelopePiece> envelope;  // at least one piece
 };
 
 // Suspension of one axle. In the multibody tree every wheel carrier slides along chassis z (a

@@ -5,7 +5,6 @@
 #include <cmath>
 
 #include <btBulletDynamicsCommon.h>
-#include <BulletCollision/CollisionShapes/btTriangleIndexVertexArray.h>
 #include <BulletDynamics/Featherstone/btMultiBody.h>
 #include <BulletDynamics/Featherstone/btMultiBodyConstraintSolver.h>
 #include <BulletDynamics/Featherstone/btMultiBodyDynamicsWorld.h>
@@ -28,14 +27,8 @@ Quat FromBt(const btMatrix3x3& m) {
   return FromBt(q);
 }
 
-constexpr int kGroupTerrain = static_cast<int>(CollisionGroup::kTerrain);
-constexpr int kGroupObstacle = static_cast<int>(CollisionGroup::kObstacle);
-constexpr int kGroupChassis = static_cast<int>(CollisionGroup::kChassis);
-constexpr int kGroupWheel = static_cast<int>(CollisionGroup::kWheel);
-
-// userIndex of collision objects: obstacle tag for obstacles; -1 for the terrain.
-// userIndex2: multibody id for vehicle colliders, -1 otherwise.
-constexpr int kNoTag = -1;
+// Bullet's persistent manifolds hold at most 4 points (MANIFOLD_CACHE_SIZE).
+constexpr int kPointsPerManifold = 4;
 
 }  // namespace
 
@@ -49,23 +42,34 @@ struct PhysicsWorld::Impl {
 
   // Owned objects (Bullet does not own what is added to it).
   std::vector<std::unique_ptr<btCollisionShape>> shapes;
-  std::vector<std::unique_ptr<btCollisionObject>> static_objects;
-  std::vector<std::unique_ptr<btTriangleIndexVertexArray>> meshes;
-  std::vector<std::vector<btScalar>> mesh_vertices;
-  std::vector<std::vector<int>> mesh_indices;
+  // The static side of every vb contact: a collision object that is never added to the world
+  // (so Bullet's collision detection never sees it); the solver treats it as a fixed body.
+  btSphereShape static_shape{0.01};
+  btCollisionObject static_side;
 
   struct Body {
     std::unique_ptr<btMultiBody> mb;
-    std::vector<std::unique_ptr<btMultiBodyLinkCollider>> colliders;
+    // One collider per link and the base: tiny spheres in no collision group. They exist because
+    // Bullet solves a link's motors, limits and contacts in the simulation island of its own
+    // collider, and a vb contact's manifold names the collider of the body it pushes.
+    std::unique_ptr<btMultiBodyLinkCollider> base_collider;
+    std::vector<std::unique_ptr<btMultiBodyLinkCollider>> link_colliders;
     std::vector<std::unique_ptr<btMultiBodyConstraint>> limits;
     std::vector<std::unique_ptr<btMultiBodyJointMotor>> motors;  // one per link, lazily made
     // Link velocities in link frames (index 0 = base), refreshed lazily after each Step.
     mutable btAlignedObjectArray<btVector3> omega, vel;
     mutable bool velocities_valid = false;
+    // Scratch of forwardKinematics.
+    btAlignedObjectArray<btQuaternion> world_to_local;
+    btAlignedObjectArray<btVector3> local_origin;
   };
   std::vector<Body> bodies;
+  std::vector<ContactConstraint> pending_contacts;   // for the next Step
+  std::vector<btPersistentManifold*> manifolds;      // made for the current Step
   std::vector<ObstacleContact> contacts;
   double last_dt = 0.005;
+
+  Impl() { static_side.setCollisionShape(&static_shape); }
 
   Body& Get(MultiBodyId id) {
     VB_DEMAND(id >= 0 && id < static_cast<int>(bodies.size()));
@@ -93,6 +97,9 @@ struct PhysicsWorld::Impl {
 
 PhysicsWorld::PhysicsWorld(double gravity_mps2) : impl_(std::make_unique<Impl>()) {
   impl_->world.setGravity(btVector3(0, 0, -gravity_mps2));
+  // No collision pairs ever exist (every collider is in no group), so Bullet's broadphase and
+  // narrowphase find nothing; contacts come from AddContact.
+  impl_->world.setForceUpdateAllAabbs(false);
   // Deterministic solver: no randomised constraint order.
   impl_->world.getSolverInfo().m_solverMode &= ~SOLVER_RANDMIZE_ORDER;
   impl_->world.getSolverInfo().m_numIterations = 30;
@@ -101,61 +108,19 @@ PhysicsWorld::PhysicsWorld(double gravity_mps2) : impl_(std::make_unique<Impl>()
 PhysicsWorld::~PhysicsWorld() {
   // Remove everything from the Bullet world before the owned objects die.
   auto& w = impl_->world;
+  for (btPersistentManifold* m : impl_->manifolds) impl_->dispatcher.releaseManifold(m);
   for (auto& b : impl_->bodies) {
     for (auto& m : b.motors)
       if (m) w.removeMultiBodyConstraint(m.get());
     for (auto& l : b.limits) w.removeMultiBodyConstraint(l.get());
-    for (auto& c : b.colliders) w.removeCollisionObject(c.get());
+    for (auto& c : b.link_colliders) w.removeCollisionObject(c.get());
+    if (b.base_collider) w.removeCollisionObject(b.base_collider.get());
     w.removeMultiBody(b.mb.get());
   }
-  for (auto& o : impl_->static_objects) w.removeCollisionObject(o.get());
-}
-
-void PhysicsWorld::AddTerrainMesh(const std::vector<Vec3>& vertices_W,
-                                  const std::vector<int>& triangles, double friction) {
-  VB_DEMAND(triangles.size() % 3 == 0 && !vertices_W.empty());
-  auto& verts = impl_->mesh_vertices.emplace_back();
-  verts.reserve(vertices_W.size() * 3);
-  for (const Vec3& v : vertices_W) {
-    verts.push_back(v.x());
-    verts.push_back(v.y());
-    verts.push_back(v.z());
-  }
-  auto& idx = impl_->mesh_indices.emplace_back(triangles);
-  auto array = std::make_unique<btTriangleIndexVertexArray>(
-      static_cast<int>(idx.size() / 3), idx.data(), 3 * static_cast<int>(sizeof(int)),
-      static_cast<int>(vertices_W.size()), verts.data(), 3 * static_cast<int>(sizeof(btScalar)));
-  auto shape = std::make_unique<btBvhTriangleMeshShape>(array.get(), true);
-  auto obj = std::make_unique<btCollisionObject>();
-  obj->setCollisionShape(shape.get());
-  obj->setFriction(friction);
-  obj->setRestitution(0.0);
-  obj->setUserIndex(kNoTag);
-  obj->setUserIndex2(-1);
-  impl_->world.addCollisionObject(obj.get(), kGroupTerrain, kGroupChassis);
-  impl_->meshes.push_back(std::move(array));
-  impl_->shapes.push_back(std::move(shape));
-  impl_->static_objects.push_back(std::move(obj));
-}
-
-void PhysicsWorld::AddStaticBox(const Pose& pose_W, const Vec3& half_extents_m, double friction,
-                                int obstacle_tag) {
-  auto shape = std::make_unique<btBoxShape>(ToBt(half_extents_m));
-  auto obj = std::make_unique<btCollisionObject>();
-  obj->setCollisionShape(shape.get());
-  obj->setWorldTransform(btTransform(ToBt(pose_W.rotation), ToBt(pose_W.position)));
-  obj->setFriction(friction);
-  obj->setRestitution(0.0);
-  obj->setUserIndex(obstacle_tag);
-  obj->setUserIndex2(-1);
-  impl_->world.addCollisionObject(obj.get(), kGroupObstacle, kGroupChassis | kGroupWheel);
-  impl_->shapes.push_back(std::move(shape));
-  impl_->static_objects.push_back(std::move(obj));
 }
 
 MultiBodyId PhysicsWorld::AddMultiBody(const MultiBodyBaseSpec& base,
-                                       const std::vector<MultiBodyLinkSpec>& links,
-                                       double contact_friction) {
+                                       const std::vector<MultiBodyLinkSpec>& links) {
   const MultiBodyId id = static_cast<MultiBodyId>(impl_->bodies.size());
   Impl::Body body;
   const int n = static_cast<int>(links.size());
@@ -185,64 +150,21 @@ MultiBodyId PhysicsWorld::AddMultiBody(const MultiBodyBaseSpec& base,
   mb->setUseGyroTerm(true);
   mb->setHasSelfCollision(false);
   mb->setBaseWorldTransform(btTransform(ToBt(base.pose_W.rotation), ToBt(base.pose_W.position)));
-  impl_->world.addMultiBody(mb, kGroupChassis, kGroupTerrain | kGroupObstacle);
+  impl_->world.addMultiBody(mb, 0, 0);
 
-  // Base collider: a compound of boxes offset from the COM.
-  if (!base.boxes.empty()) {
-    auto compound = std::make_unique<btCompoundShape>();
-    for (const BoxShape& b : base.boxes) {
-      auto box = std::make_unique<btBoxShape>(ToBt(b.half_extents_m));
-      compound->addChildShape(btTransform(btQuaternion::getIdentity(), ToBt(b.center_B)),
-                              box.get());
-      impl_->shapes.push_back(std::move(box));
-    }
-    auto col = std::make_unique<btMultiBodyLinkCollider>(mb, -1);
-    col->setCollisionShape(compound.get());
-    col->setWorldTransform(mb->getBaseWorldTransform());
-    col->setFriction(contact_friction);
-    col->setUserIndex(kNoTag);
-    col->setUserIndex2(id);
-    impl_->world.addCollisionObject(col.get(), kGroupChassis, kGroupTerrain | kGroupObstacle);
-    mb->setBaseCollider(col.get());
-    impl_->shapes.push_back(std::move(compound));
-    body.colliders.push_back(std::move(col));
-  }
-
-  // Link colliders (wheel cylinders, obstacles only) and joint limits.
-  btAlignedObjectArray<btQuaternion> world_to_local;
-  btAlignedObjectArray<btVector3> local_origin;
-  world_to_local.resize(n + 1);
-  local_origin.resize(n + 1);
-  mb->forwardKinematics(world_to_local, local_origin);
+  auto anchor = std::make_unique<btSphereShape>(0.01);
+  body.base_collider = std::make_unique<btMultiBodyLinkCollider>(mb, -1);
+  body.base_collider->setCollisionShape(anchor.get());
+  body.base_collider->setWorldTransform(mb->getBaseWorldTransform());
+  impl_->world.addCollisionObject(body.base_collider.get(), 0, 0);
+  mb->setBaseCollider(body.base_collider.get());
   for (int i = 0; i < n; ++i) {
+    auto col = std::make_unique<btMultiBodyLinkCollider>(mb, i);
+    col->setCollisionShape(anchor.get());
+    impl_->world.addCollisionObject(col.get(), 0, 0);
+    mb->getLink(i).m_collider = col.get();
+    body.link_colliders.push_back(std::move(col));
     const MultiBodyLinkSpec& l = links[i];
-    if (l.has_cylinder) {
-      auto cyl = std::make_unique<btCylinderShape>(
-          btVector3(l.cylinder.radius_m, l.cylinder.half_width_m, l.cylinder.radius_m));
-      auto col = std::make_unique<btMultiBodyLinkCollider>(mb, i);
-      col->setCollisionShape(cyl.get());
-      col->setFriction(contact_friction);
-      col->setUserIndex(kNoTag);
-      col->setUserIndex2(id);
-      impl_->world.addCollisionObject(col.get(), kGroupWheel, kGroupObstacle);
-      mb->getLink(i).m_collider = col.get();
-      impl_->shapes.push_back(std::move(cyl));
-      body.colliders.push_back(std::move(col));
-    }
-    if (!l.has_cylinder) {
-      // Bullet solves a link's motors and limits in the simulation island of that link's own
-      // collider; a link without one gets island -1 and its motors are silently skipped. A tiny
-      // sphere that collides with nothing (group 0, mask 0) puts the link in its body's island.
-      auto anchor = std::make_unique<btSphereShape>(0.01);
-      auto col = std::make_unique<btMultiBodyLinkCollider>(mb, i);
-      col->setCollisionShape(anchor.get());
-      col->setUserIndex(kNoTag);
-      col->setUserIndex2(-1);
-      impl_->world.addCollisionObject(col.get(), 0, 0);
-      mb->getLink(i).m_collider = col.get();
-      impl_->shapes.push_back(std::move(anchor));
-      body.colliders.push_back(std::move(col));
-    }
     if (l.limit_lower <= l.limit_upper) {
       auto lim = std::make_unique<btMultiBodyJointLimitConstraint>(mb, i, l.limit_lower,
                                                                    l.limit_upper);
@@ -250,7 +172,11 @@ MultiBodyId PhysicsWorld::AddMultiBody(const MultiBodyBaseSpec& base,
       body.limits.push_back(std::move(lim));
     }
   }
-  mb->updateCollisionObjectWorldTransforms(world_to_local, local_origin);
+  impl_->shapes.push_back(std::move(anchor));
+  body.world_to_local.resize(n + 1);
+  body.local_origin.resize(n + 1);
+  mb->forwardKinematics(body.world_to_local, body.local_origin);
+  mb->updateCollisionObjectWorldTransforms(body.world_to_local, body.local_origin);
   body.motors.resize(n);
   body.omega.resize(n + 1);
   body.vel.resize(n + 1);
@@ -261,12 +187,42 @@ MultiBodyId PhysicsWorld::AddMultiBody(const MultiBodyBaseSpec& base,
 void PhysicsWorld::SetJointPosition(MultiBodyId id, int link, double q) {
   Impl::Body& b = impl_->Get(id);
   b.mb->setJointPos(link, q);
-  btAlignedObjectArray<btQuaternion> world_to_local;
-  btAlignedObjectArray<btVector3> local_origin;
-  world_to_local.resize(b.mb->getNumLinks() + 1);
-  local_origin.resize(b.mb->getNumLinks() + 1);
-  b.mb->forwardKinematics(world_to_local, local_origin);
-  b.mb->updateCollisionObjectWorldTransforms(world_to_local, local_origin);
+  b.mb->forwardKinematics(b.world_to_local, b.local_origin);
+  b.mb->updateCollisionObjectWorldTransforms(b.world_to_local, b.local_origin);
+  b.velocities_valid = false;
+}
+
+MultiBodyState PhysicsWorld::GetState(MultiBodyId id) const {
+  const btMultiBody* mb = impl_->Get(id).mb.get();
+  MultiBodyState s;
+  s.base_position_W = FromBt(mb->getBasePos());
+  s.base_rotation = FromBt(mb->getWorldToBaseRot());   // stored as is (world-to-base)
+  s.base_velocity_W = FromBt(mb->getBaseVel());
+  s.base_angular_velocity_W = FromBt(mb->getBaseOmega());
+  s.q.resize(static_cast<size_t>(mb->getNumLinks()));
+  s.qdot.resize(static_cast<size_t>(mb->getNumLinks()));
+  for (int i = 0; i < mb->getNumLinks(); ++i) {
+    s.q[static_cast<size_t>(i)] = mb->getJointPos(i);
+    s.qdot[static_cast<size_t>(i)] = mb->getJointVel(i);
+  }
+  return s;
+}
+
+void PhysicsWorld::SetState(MultiBodyId id, const MultiBodyState& s) {
+  Impl::Body& b = impl_->Get(id);
+  btMultiBody* mb = b.mb.get();
+  VB_DEMAND(s.q.size() == static_cast<size_t>(mb->getNumLinks()) && s.qdot.size() == s.q.size());
+  mb->setBasePos(ToBt(s.base_position_W));
+  mb->setWorldToBaseRot(ToBt(s.base_rotation));
+  mb->setBaseVel(ToBt(s.base_velocity_W));
+  mb->setBaseOmega(ToBt(s.base_angular_velocity_W));
+  for (int i = 0; i < mb->getNumLinks(); ++i) {
+    mb->setJointPos(i, s.q[static_cast<size_t>(i)]);
+    mb->setJointVel(i, s.qdot[static_cast<size_t>(i)]);
+  }
+  mb->clearForcesAndTorques();
+  mb->forwardKinematics(b.world_to_local, b.local_origin);
+  mb->updateCollisionObjectWorldTransforms(b.world_to_local, b.local_origin);
   b.velocities_valid = false;
 }
 
@@ -359,46 +315,69 @@ double PhysicsWorld::JointVelocity(MultiBodyId id, int link) const {
   return impl_->Get(id).mb->getJointVel(link);
 }
 
+void PhysicsWorld::AddContact(const ContactConstraint& contact) {
+  impl_->pending_contacts.push_back(contact);
+}
+
 void PhysicsWorld::Step(double dt) {
+  Impl& m = *impl_;
   // Motor impulse bounds were set for the previous dt; keep them consistent with this one.
-  if (dt != impl_->last_dt) {
-    const double ratio = dt / impl_->last_dt;
-    for (auto& b : impl_->bodies)
-      for (auto& m : b.motors)
-        if (m) m->setMaxAppliedImpulse(m->getMaxAppliedImpulse() * ratio);
-    impl_->last_dt = dt;
+  if (dt != m.last_dt) {
+    const double ratio = dt / m.last_dt;
+    for (auto& b : m.bodies)
+      for (auto& motor : b.motors)
+        if (motor) motor->setMaxAppliedImpulse(motor->getMaxAppliedImpulse() * ratio);
+    m.last_dt = dt;
   }
+
+  // vb's contacts become manifold points between the body's collider and the static side, in
+  // the order they were added (deterministic), at most 4 per manifold. Nothing is cached from one
+  // step to the next: no warm start, no persistent points.
+  m.contacts.clear();
+  const btCollisionObject* previous = nullptr;
+  btPersistentManifold* manifold = nullptr;
+  for (const ContactConstraint& c : m.pending_contacts) {
+    Impl::Body& b = m.Get(c.body);
+    VB_DEMAND(c.link >= -1 && c.link < b.mb->getNumLinks());
+    btMultiBodyLinkCollider* col =
+        c.link < 0 ? b.base_collider.get() : b.link_colliders[static_cast<size_t>(c.link)].get();
+    if (col != previous || manifold == nullptr || manifold->getNumContacts() >= kPointsPerManifold) {
+      manifold = m.dispatcher.getNewManifold(col, &m.static_side);
+      m.manifolds.push_back(manifold);
+      previous = col;
+    }
+    const btVector3 point_a = ToBt(c.point_W);
+    const btVector3 normal = ToBt(c.normal_W);
+    const btVector3 point_b = point_a + normal * c.depth_m;
+    btManifoldPoint pt(col->getWorldTransform().invXform(point_a), point_b, normal, -c.depth_m);
+    pt.m_positionWorldOnA = point_a;
+    pt.m_positionWorldOnB = point_b;
+    pt.m_combinedFriction = c.friction;
+    pt.m_combinedRestitution = 0.0;
+    manifold->addManifoldPoint(pt);
+    if (c.obstacle_tag >= 0) m.contacts.push_back({c.body, c.obstacle_tag});
+  }
+  m.pending_contacts.clear();
+
   // Exactly one fixed step: maxSubSteps = 0 means "step by dt", no interpolation.
-  impl_->world.stepSimulation(dt, 0, dt);
-  for (auto& b : impl_->bodies) {
+  m.world.stepSimulation(dt, 0, dt);
+  for (btPersistentManifold* mf : m.manifolds) m.dispatcher.releaseManifold(mf);
+  m.manifolds.clear();
+  for (auto& b : m.bodies) {
     b.velocities_valid = false;
     b.mb->clearForcesAndTorques();
   }
 
   // Obstacle contacts of this step, in a deterministic order.
-  impl_->contacts.clear();
-  const int n_manifolds = impl_->dispatcher.getNumManifolds();
-  for (int i = 0; i < n_manifolds; ++i) {
-    const btPersistentManifold* m = impl_->dispatcher.getManifoldByIndexInternal(i);
-    bool touching = false;
-    for (int k = 0; k < m->getNumContacts(); ++k)
-      if (m->getContactPoint(k).getDistance() <= 0.0) touching = true;
-    if (!touching) continue;
-    const btCollisionObject* a = m->getBody0();
-    const btCollisionObject* b = m->getBody1();
-    if (a->getUserIndex() < 0) std::swap(a, b);
-    if (a->getUserIndex() < 0 || b->getUserIndex2() < 0) continue;
-    impl_->contacts.push_back({b->getUserIndex2(), a->getUserIndex()});
-  }
-  std::sort(impl_->contacts.begin(), impl_->contacts.end(),
+  std::sort(m.contacts.begin(), m.contacts.end(),
             [](const ObstacleContact& x, const ObstacleContact& y) {
               return x.body != y.body ? x.body < y.body : x.obstacle_tag < y.obstacle_tag;
             });
-  impl_->contacts.erase(std::unique(impl_->contacts.begin(), impl_->contacts.end(),
-                                    [](const ObstacleContact& x, const ObstacleContact& y) {
-                                      return x.body == y.body && x.obstacle_tag == y.obstacle_tag;
-                                    }),
-                        impl_->contacts.end());
+  m.contacts.erase(std::unique(m.contacts.begin(), m.contacts.end(),
+                               [](const ObstacleContact& x, const ObstacleContact& y) {
+                                 return x.body == y.body && x.obstacle_tag == y.obstacle_tag;
+                               }),
+                   m.contacts.end());
 }
 
 const std::vector<ObstacleContact>& PhysicsWorld::ObstacleContacts() const {

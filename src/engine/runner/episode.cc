@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <exception>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,7 @@
 #include "vb/terrain/grid_planner.h"
 #include "vb/terrain/gt_maps.h"
 #include "vb/terrain/terrain.h"
+#include "vb/terrain/obstacle_field.h"
 #include "vb/terrain/terrain_physics.h"
 
 namespace vb::runner {
@@ -165,6 +167,7 @@ struct Episode::Impl {
         inflated(terrain::Inflate(terrain::RasterizeObstacles(task_in),
                                   terrain::PlannerInflationCells(task_in))),
         maps(task_in, /*inflation_cells=*/0),
+        obstacles(task_in, ground),
         builder(maps, inflated, task_in.scale) {}
 
   // --- static world (per Episode) ---
@@ -176,6 +179,7 @@ struct Episode::Impl {
   // The planning grid as the original: obstacle footprints dilated by 4 m * scale.
   const terrain::OccupancyGrid inflated;
   const terrain::GroundTruthMaps maps;   // bare obstacle footprints
+  const terrain::ObstacleField obstacles;
   ObservationBuilder builder;
   int steps_per_period = 1;
   long max_steps = 1;
@@ -381,13 +385,12 @@ void Episode::Reset(const TrialSpec& spec) {
   const terrain::StartGoalPair& pair = task.pairs[static_cast<size_t>(spec.pair_index)];
   m.goal_m = pair.goal_m;
 
-  // The per-trial world, rebuilt from scratch: the physics engine keeps contact caches, so a
-  // fresh world is what makes every trial independent of the ones before it.
+  // The per-trial world: a physics world with just the vehicle (the ground and the obstacles are
+  // vb's own contact geometry, built once with the episode), the soil, if any, untouched.
   m.timed_soil.reset();
   m.soil.reset();
   m.vehicle.reset();
   m.world = std::make_unique<engine::PhysicsWorld>();
-  terrain::AddTerrainToPhysics(task, m.ground, m.world.get());
 
   // Vehicle facing the goal, dropped from start_height: the highest ground under the reference
   // point and the wheel centres decides the height, so that on a slope no wheel starts inside
@@ -411,6 +414,7 @@ void Episode::Reset(const TrialSpec& spec) {
                m.rules.start_height_m);
   start_pose.rotation = FromYaw(yaw0);
   m.vehicle = std::make_unique<vehicles::Vehicle>(vp, m.ground, start_pose, m.world.get());
+  m.vehicle->SetObstacles(&m.obstacles);
   // Deformable patches: one SCM grid over the whole world (it only stores what wheels touch);
   // wheels over rigid patches keep the vehicle's rigid tire, rocks stay rigid bodies.
   if (HasDeformablePatches(task)) {
@@ -512,6 +516,64 @@ TrialResult Episode::TakeResult() {
   r.trajectory = std::move(impl_->metrics.trajectory());
   impl_->metrics.trajectory().clear();
   return r;
+}
+
+struct EpisodeSnapshot::Data {
+  TrialSpec spec;
+  Progress progress;
+  TrialMetrics metrics;
+  NavigationState navigation;
+  controllers::Observation observation;
+  bool observation_valid = false;
+  vehicles::VehicleSnapshot vehicle;
+  std::optional<soil::SoilSnapshot> soil;
+  double time_s = 0.0;
+};
+
+EpisodeSnapshot::EpisodeSnapshot() = default;
+EpisodeSnapshot::~EpisodeSnapshot() = default;
+EpisodeSnapshot::EpisodeSnapshot(const EpisodeSnapshot& other)
+    : data_(other.data_ ? std::make_unique<Data>(*other.data_) : nullptr) {}
+EpisodeSnapshot& EpisodeSnapshot::operator=(const EpisodeSnapshot& other) {
+  if (this != &other) data_ = other.data_ ? std::make_unique<Data>(*other.data_) : nullptr;
+  return *this;
+}
+double EpisodeSnapshot::time_s() const { return data_ ? data_->time_s : 0.0; }
+
+EpisodeSnapshot Episode::Snapshot() const {
+  const Impl& m = *impl_;
+  VB_DEMAND(m.started);
+  EpisodeSnapshot snapshot;
+  snapshot.data_ = std::make_unique<EpisodeSnapshot::Data>();
+  EpisodeSnapshot::Data& d = *snapshot.data_;
+  d.spec = m.spec;
+  d.progress = m.progress;
+  d.metrics = m.metrics;
+  d.navigation = m.builder.navigation();
+  d.observation = m.observation;
+  d.observation_valid = m.observation_valid;
+  d.vehicle = m.vehicle->Snapshot();
+  if (m.soil) d.soil = m.soil->Snapshot();
+  d.time_s = m.Time();
+  return snapshot;
+}
+
+void Episode::Restore(const EpisodeSnapshot& snapshot) {
+  VB_DEMAND(snapshot.data_ != nullptr);
+  const EpisodeSnapshot::Data& d = *snapshot.data_;
+  Impl& m = *impl_;
+  if (!m.started || m.spec.pair_index != d.spec.pair_index) Reset(d.spec);
+  m.spec = d.spec;
+  m.context.seed = d.spec.seed;
+  m.progress = d.progress;
+  m.metrics = d.metrics;
+  m.builder.set_navigation(d.navigation);
+  m.observation = d.observation;
+  m.observation.global_path_m = &m.builder.navigation().path_m;
+  m.observation_valid = d.observation_valid;
+  m.vehicle->Restore(d.vehicle);
+  VB_DEMAND(static_cast<bool>(m.soil) == d.soil.has_value());
+  if (m.soil) m.soil->Restore(*d.soil);
 }
 
 const controllers::EpisodeContext& Episode::context() const { return impl_->context; }

@@ -109,6 +109,25 @@ struct TrialResult {
   std::vector<TrajectorySample> trajectory;
 };
 
+// The mutable state of a running episode: vehicle multibody and internal states (tires,
+// powertrain), soil deformation (touched tiles only), navigation, bookkeeping and the trajectory
+// so far. Copyable, opaque. Made by Episode::Snapshot; restored by Episode::Restore into the same
+// episode or another one built from the same task, vehicle, soil and rules (a planner that
+// branches). The controller is not part of it: Controller::Clone copies one.
+class EpisodeSnapshot {
+ public:
+  EpisodeSnapshot();
+  ~EpisodeSnapshot();
+  EpisodeSnapshot(const EpisodeSnapshot& other);
+  EpisodeSnapshot& operator=(const EpisodeSnapshot& other);
+  double time_s() const;
+
+ private:
+  friend class Episode;
+  struct Data;
+  std::unique_ptr<Data> data_;
+};
+
 class Episode {
  public:
   // Builds the static world of `task` (terrain, ground-truth maps, planning grid). The task,
@@ -142,6 +161,12 @@ class Episode {
   // As Result(), but moves the trajectory out (the episode's own is left empty): the cheap way
   // to end a trial.
   TrialResult TakeResult();
+
+  EpisodeSnapshot Snapshot() const;
+  // Continues from `snapshot` as if the steps since it never happened: stepping the same
+  // commands gives the same bits. Rebuilds the per-trial world first if this episode has not
+  // started the snapshot's pair.
+  void Restore(const EpisodeSnapshot& snapshot);
 
   // Ends the trial now as sim_error with `message` (e.g. the controller failed).
   void EndWithSimError(const std::string& message);

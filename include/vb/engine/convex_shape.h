@@ -1,0 +1,48 @@
+// A convex polyhedron for body-body contact (chassis envelopes, obstacles): vertices, outward
+// face planes, edges, and the points vb's contact generation tests against the other shape
+// (vertices plus samples along every edge). Built once; contact queries only read it.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "vb/engine/types.h"
+
+namespace vb::engine {
+
+struct ConvexShape {
+  struct Face {
+    Vec3 normal = Vec3::UnitZ();   // outward unit normal
+    double offset = 0.0;           // plane: normal . x = offset
+  };
+  std::vector<Vec3> vertices;
+  std::vector<Face> faces;
+  std::vector<std::pair<int, int>> edges;   // vertex indices
+  // Vertices, then points every <= sample_spacing_m along each edge (ends excluded).
+  std::vector<Vec3> samples;
+  Vec3 aabb_min = Vec3::Zero();
+  Vec3 aabb_max = Vec3::Zero();
+
+  // Signed distance of p to the surface along the face of least penetration: > 0 outside (a lower
+  // bound of the true distance), < 0 inside (minus the depth below the nearest face). *face gets
+  // that face's index.
+  double SignedDistance(const Vec3& p, int* face) const;
+  // The same shape moved by `pose` (vertices, planes, samples, box).
+  ConvexShape Transformed(const Pose& pose) const;
+  // Transformed into *out, reusing its storage (no allocation once sized).
+  void TransformInto(const Pose& pose, ConvexShape* out) const;
+};
+
+// An axis-aligned box of half extents `half_m` centred at `center` (8 vertices, 6 faces).
+ConvexShape MakeBox(const Vec3& center, const Vec3& half_m, double sample_spacing_m);
+// The convex hull of `points` (at least 4, not all in one plane), faces merged where coplanar.
+// False with *error set if there is no such hull.
+bool TryMakeConvexHull(const std::vector<Vec3>& points, double sample_spacing_m, ConvexShape* out,
+                       std::string* error);
+// The same, throwing InputError naming `what` if the hull is degenerate.
+ConvexShape MakeConvexHull(const std::vector<Vec3>& points, double sample_spacing_m,
+                           const std::string& what);
+// Adds the edge samples and the bounding box (after vertices, faces and edges are set).
+void FinishShape(double sample_spacing_m, ConvexShape* shape);
+
+}  // namespace vb::engine

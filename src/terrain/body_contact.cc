@@ -1,0 +1,202 @@
+#include "vb/terrain/body_contact.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace vb::terrain {
+
+void ReduceContacts(const std::vector<BodyContact>& c, int max_contacts, std::vector<char>* taken,
+                    std::vector<BodyContact>* out) {
+  const size_t n = c.size();
+  if (n == 0 || max_contacts <= 0) return;
+  if (n <= static_cast<size_t>(max_contacts)) {
+    out->insert(out->end(), c.begin(), c.end());
+    return;
+  }
+  taken->assign(n, 0);
+  size_t deepest = 0;
+  for (size_t i = 1; i < n; ++i)
+    if (c[i].depth_m > c[deepest].depth_m) deepest = i;
+  const size_t first = out->size();
+  (*taken)[deepest] = 1;
+  out->push_back(c[deepest]);
+  for (int k = 1; k < max_contacts; ++k) {
+    size_t best = n;
+    double best_d2 = -1.0;
+    for (size_t i = 0; i < n; ++i) {
+      if ((*taken)[i]) continue;
+      double d2 = 1e300;
+      for (size_t j = first; j < out->size(); ++j)
+        d2 = std::min(d2, ((*out)[j].point_W - c[i].point_W).squaredNorm());
+      if (d2 > best_d2) {
+        best_d2 = d2;
+        best = i;
+      }
+    }
+    if (best == n) break;
+    (*taken)[best] = 1;
+    out->push_back(c[best]);
+  }
+}
+
+void GroundContacts(const engine::ConvexShape& body, const Terrain& ground, double body_friction,
+                    int max_contacts, ContactScratch* scratch, std::vector<BodyContact>* out) {
+  std::vector<BodyContact>& cand = scratch->candidates;
+  cand.clear();
+  // Highest ground vertex under the body's footprint (plus the body's own corners' heights, which
+  // cover a footprint smaller than a cell): nothing below it can touch.
+  const HeightGrid& g = ground.grid();
+  const double west = -0.5 * ground.size_x_m(), north = 0.5 * ground.size_y_m();
+  const double dx = ground.spacing_x_m(), dy = ground.spacing_y_m();
+  const int c0 = std::max(0, static_cast<int>(std::floor((body.aabb_min.x() - west) / dx)));
+  const int c1 = std::min(g.cols - 1, static_cast<int>(std::ceil((body.aabb_max.x() - west) / dx)));
+  const int r0 = std::max(0, static_cast<int>(std::floor((north - body.aabb_max.y()) / dy)));
+  const int r1 = std::min(g.rows - 1, static_cast<int>(std::ceil((north - body.aabb_min.y()) / dy)));
+  double max_h = -1e300;
+  for (int r = r0; r <= r1; ++r)
+    for (int c = c0; c <= c1; ++c) max_h = std::max(max_h, g.At(r, c));
+  if (c0 > c1 || r0 > r1) max_h = ground.Height(body.aabb_min.x(), body.aabb_min.y());
+  max_h = std::max(max_h, ground.Height(0.5 * (body.aabb_min.x() + body.aabb_max.x()),
+                                        0.5 * (body.aabb_min.y() + body.aabb_max.y())));
+  if (body.aabb_min.z() > max_h) return;
+
+  // Body samples below the surface: push along the surface normal.
+  for (const Vec3& p : body.samples) {
+    if (p.z() >= max_h) continue;
+    const double h = ground.Height(p.x(), p.y());
+    if (p.z() >= h) continue;
+    const SurfacePoint sp = ground.Query(p.x(), p.y());
+    BodyContact k;
+    k.point_W = p;
+    k.normal_W = sp.normal_W;
+    k.depth_m = (sp.height_m - p.z()) * sp.normal_W.z();
+    k.friction = std::min(body_friction,
+                          IsDeformable(sp.surface) ? kBodyOnSoilFriction : sp.friction);
+    cand.push_back(k);
+  }
+  // Ground vertices inside the body: push along the body's face of least penetration.
+  const int ci0 = std::max(0, static_cast<int>(std::ceil((body.aabb_min.x() - west) / dx)));
+  const int ci1 = std::min(g.cols - 1, static_cast<int>(std::floor((body.aabb_max.x() - west) / dx)));
+  const int ri0 = std::max(0, static_cast<int>(std::ceil((north - body.aabb_max.y()) / dy)));
+  const int ri1 = std::min(g.rows - 1, static_cast<int>(std::floor((north - body.aabb_min.y()) / dy)));
+  for (int r = ri0; r <= ri1; ++r) {
+    for (int c = ci0; c <= ci1; ++c) {
+      const Vec3 v(west + c * dx, north - r * dy, g.At(r, c));
+      if (v.z() <= body.aabb_min.z()) continue;
+      int face = 0;
+      const double d = body.SignedDistance(v, &face);
+      if (d >= 0.0) continue;
+      const engine::ConvexShape::Face& f = body.faces[static_cast<size_t>(face)];
+      const SurfacePoint sp = ground.Query(v.x(), v.y());
+      BodyContact k;
+      k.depth_m = -d;
+      k.normal_W = -f.normal;
+      k.point_W = v + f.normal * k.depth_m;   // on the body's face
+      k.friction = std::min(body_friction,
+                            IsDeformable(sp.surface) ? kBodyOnSoilFriction : sp.friction);
+      cand.push_back(k);
+    }
+  }
+  ReduceContacts(cand, max_contacts, &scratch->taken, out);
+}
+
+void ObstacleContacts(const engine::ConvexShape& body, const ObstacleField& field,
+                      double body_friction, int max_per_obstacle, ContactScratch* scratch,
+                      std::vector<BodyContact>* out) {
+  field.Overlapping(body.aabb_min, body.aabb_max, &scratch->obstacles);
+  for (int index : scratch->obstacles) {
+    const Obstacle& o = field.obstacles()[static_cast<size_t>(index)];
+    std::vector<BodyContact>& cand = scratch->candidates;
+    cand.clear();
+    const double mu = std::min(body_friction, o.friction);
+    // body samples inside the obstacle
+    for (const Vec3& p : body.samples) {
+      if ((p.array() < o.shape.aabb_min.array()).any() ||
+          (p.array() > o.shape.aabb_max.array()).any()) {
+        continue;
+      }
+      int face = 0;
+      const double d = o.shape.SignedDistance(p, &face);
+      if (d >= 0.0) continue;
+      BodyContact k;
+      k.point_W = p;
+      k.normal_W = o.shape.faces[static_cast<size_t>(face)].normal;
+      k.depth_m = -d;
+      k.friction = mu;
+      k.obstacle_tag = o.tag;
+      cand.push_back(k);
+    }
+    // obstacle samples inside the body
+    for (const Vec3& q : o.shape.samples) {
+      if ((q.array() < body.aabb_min.array()).any() || (q.array() > body.aabb_max.array()).any()) {
+        continue;
+      }
+      int face = 0;
+      const double d = body.SignedDistance(q, &face);
+      if (d >= 0.0) continue;
+      const engine::ConvexShape::Face& f = body.faces[static_cast<size_t>(face)];
+      BodyContact k;
+      k.depth_m = -d;
+      k.normal_W = -f.normal;
+      k.point_W = q + f.normal * k.depth_m;
+      k.friction = mu;
+      k.obstacle_tag = o.tag;
+      cand.push_back(k);
+    }
+    ReduceContacts(cand, max_per_obstacle, &scratch->taken, out);
+  }
+}
+
+void WheelObstacleContacts(const Vec3& c, const Vec3& a, double r, double hw,
+                           const ObstacleField& field, double wheel_friction, int max_per_obstacle,
+                           ContactScratch* scratch, std::vector<BodyContact>* out) {
+  const Vec3 reach = Vec3::Constant(r + hw);
+  field.Overlapping(c - reach, c + reach, &scratch->obstacles);
+  for (int index : scratch->obstacles) {
+    const Obstacle& o = field.obstacles()[static_cast<size_t>(index)];
+    std::vector<BodyContact>& cand = scratch->candidates;
+    cand.clear();
+    const double mu = std::min(wheel_friction, o.friction);
+    // Obstacle samples inside the cylinder push it radially, away from them: an edge under the
+    // tread pushes towards the wheel centre, which is how a wheel climbs it. (A face pressed
+    // against the side wall is the face case below; choosing the axial direction for samples
+    // near the side walls would turn an edge across the whole tread into sideways pushes.)
+    for (const Vec3& q : o.shape.samples) {
+      const Vec3 u = q - c;
+      const double along = u.dot(a);
+      if (std::abs(along) >= hw) continue;
+      const Vec3 radial = u - along * a;
+      const double rho = radial.norm();
+      if (rho >= r || rho <= 1e-9) continue;
+      BodyContact k;
+      k.friction = mu;
+      k.obstacle_tag = o.tag;
+      k.depth_m = r - rho;
+      k.normal_W = -radial / rho;
+      k.point_W = c + radial / rho * r + along * a;   // on the tread
+      cand.push_back(k);
+    }
+    // The cylinder's deepest point below each obstacle face, where it lies inside the obstacle
+    // with that face the least penetrated (a wheel resting on a face).
+    for (const engine::ConvexShape::Face& f : o.shape.faces) {
+      const double na = f.normal.dot(a);
+      Vec3 in_plane = f.normal - na * a;
+      const double in_norm = in_plane.norm();
+      Vec3 p = c - hw * (na >= 0.0 ? 1.0 : -1.0) * a;
+      if (in_norm > 1e-9) p -= r * in_plane / in_norm;
+      int face = 0;
+      const double d = o.shape.SignedDistance(p, &face);
+      if (d >= 0.0 || &o.shape.faces[static_cast<size_t>(face)] != &f) continue;
+      BodyContact k;
+      k.point_W = p;
+      k.normal_W = f.normal;
+      k.depth_m = -d;
+      k.friction = mu;
+      k.obstacle_tag = o.tag;
+      cand.push_back(k);
+    }
+    ReduceContacts(cand, max_per_obstacle, &scratch->taken, out);
+  }
+}
+
+}  // namespace vb::terrain

@@ -1,0 +1,175 @@
+// vb's body contact generation (terrain/body_contact.h) on hand-made cases with known answers:
+// a box resting on a plane, a terrain peak poking into a box's bottom, a box pressed into a rock,
+// a wheel against a rock's edge and on its top face; plus the convex hull builder.
+#include "vb/terrain/body_contact.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "support/worlds.h"
+#include "vb/engine/convex_shape.h"
+#include "vb/engine/error.h"
+
+namespace vb::terrain {
+namespace {
+
+engine::ConvexShape Box(const Vec3& center, const Vec3& half, double spacing = 0.25) {
+  return engine::MakeBox(center, half, spacing);
+}
+
+TEST(ConvexShapeTest, BoxAndHullAgree) {
+  const engine::ConvexShape box = Box(Vec3(1, 2, 3), Vec3(0.5, 1.0, 1.5), 0.5);
+  EXPECT_EQ(box.vertices.size(), 8u);
+  EXPECT_EQ(box.faces.size(), 6u);
+  EXPECT_EQ(box.edges.size(), 12u);
+  std::vector<Vec3> points = box.vertices;
+  points.push_back(Vec3(1, 2, 3));  // an inner point is not a vertex of the hull
+  const engine::ConvexShape hull = engine::MakeConvexHull(points, 0.5, "test");
+  EXPECT_EQ(hull.vertices.size(), 8u);
+  EXPECT_EQ(hull.faces.size(), 6u);   // coplanar triangles merged
+  EXPECT_EQ(hull.edges.size(), 12u);  // no diagonals
+  for (const Vec3& p : {Vec3(1, 2, 3), Vec3(1.4, 2.9, 4.4), Vec3(2, 2, 3), Vec3(1, 2, 5)}) {
+    EXPECT_NEAR(hull.SignedDistance(p, nullptr), box.SignedDistance(p, nullptr), 1e-12);
+  }
+  EXPECT_NEAR(box.SignedDistance(Vec3(1, 2, 3), nullptr), -0.5, 1e-12);  // nearest face x
+  EXPECT_NEAR(box.SignedDistance(Vec3(1, 2, 5), nullptr), 0.5, 1e-12);
+  // samples: 8 vertices + per edge ceil(len / 0.5) - 1 inner points
+  EXPECT_EQ(box.samples.size(), 8u + 4 * (1 + 3 + 5));
+  EXPECT_THROW(engine::MakeConvexHull({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(1, 1, 0)},
+                                      0.5, "flat"),
+               InputError);
+}
+
+TEST(BodyContactTest, BoxSunkIntoAPlaneTouchesAtItsBottom) {
+  const TaskSpec task = test::PlaneTask(32.0);  // z = 0, concrete mu 0.9
+  const Terrain ground(task);
+  // 2 x 1 x 0.5 m box whose bottom is 1 cm below the ground
+  const engine::ConvexShape box = Box(Vec3(0.3, 0.2, 0.24), Vec3(1.0, 0.5, 0.25));
+  ContactScratch scratch;
+  std::vector<BodyContact> out;
+  GroundContacts(box, ground, 0.8, 8, &scratch, &out);
+  ASSERT_EQ(out.size(), 8u);  // more candidates (bottom samples), the best-spread 8 kept
+  double x_lo = 1e9, x_hi = -1e9;
+  for (const BodyContact& c : out) {
+    EXPECT_NEAR(c.depth_m, 0.01, 1e-12);
+    EXPECT_NEAR(c.point_W.z(), -0.01, 1e-12);
+    EXPECT_EQ(c.normal_W, Vec3::UnitZ());
+    EXPECT_DOUBLE_EQ(c.friction, 0.8);  // min(body 0.8, concrete 0.9)
+    EXPECT_EQ(c.obstacle_tag, -1);
+    x_lo = std::min(x_lo, c.point_W.x());
+    x_hi = std::max(x_hi, c.point_W.x());
+  }
+  EXPECT_DOUBLE_EQ(x_lo, -0.7);  // the corners are among them
+  EXPECT_DOUBLE_EQ(x_hi, 1.3);
+  // lifted 2 cm: nothing
+  out.clear();
+  GroundContacts(Box(Vec3(0.3, 0.2, 0.27), Vec3(1.0, 0.5, 0.25)), ground, 0.8, 8, &scratch, &out);
+  EXPECT_TRUE(out.empty());
+}
+
+TEST(BodyContactTest, TerrainPeakInsideTheBoxPushesItUpAlongTheBottomFace) {
+  TaskSpec task = test::PlaneTask(32.0);
+  // one grid vertex 0.5 m up at (0, 0): a pyramid peak between the box's bottom samples
+  task.heights.heights_m[static_cast<size_t>(16) * 33 + 16] = 0.5;
+  const Terrain ground(task);
+  const engine::ConvexShape box = Box(Vec3(0.0, 0.0, 0.7), Vec3(1.5, 0.9, 0.25));  // bottom 0.45
+  ContactScratch scratch;
+  std::vector<BodyContact> out;
+  GroundContacts(box, ground, 0.8, 8, &scratch, &out);
+  ASSERT_FALSE(out.empty());
+  double deepest = 0.0;
+  for (const BodyContact& c : out) {
+    EXPECT_NEAR(c.normal_W.z(), 1.0, 1e-12);
+    deepest = std::max(deepest, c.depth_m);
+  }
+  EXPECT_NEAR(deepest, 0.05, 1e-12);  // the peak 5 cm above the bottom face
+}
+
+TEST(BodyContactTest, BoxPressedIntoARockTopIsPushedUp) {
+  TaskSpec task = test::PlaneTask(64.0);
+  task.rocks.push_back({0.0, 0.0, 1.0});  // 4.4 x 4.4 x 3.8 box on flat ground: top at 3.8
+  const Terrain ground(task);
+  const ObstacleField field(task, ground);
+  ASSERT_EQ(field.obstacles().size(), 1u);
+  EXPECT_NEAR(field.obstacles()[0].shape.aabb_max.z(), 3.8, 1e-12);
+  const engine::ConvexShape box = Box(Vec3(1.0, 0.5, 4.03), Vec3(0.5, 0.5, 0.25));  // 2 cm in
+  ContactScratch scratch;
+  std::vector<BodyContact> out;
+  ObstacleContacts(box, field, 0.8, 8, &scratch, &out);
+  ASSERT_FALSE(out.empty());
+  for (const BodyContact& c : out) {
+    EXPECT_NEAR(c.depth_m, 0.02, 1e-12);
+    EXPECT_NEAR(c.normal_W.z(), 1.0, 1e-12);
+    EXPECT_EQ(c.obstacle_tag, 0);
+    EXPECT_DOUBLE_EQ(c.friction, 0.8);
+  }
+  // far away: the broadphase reports nothing
+  out.clear();
+  ObstacleContacts(Box(Vec3(20.0, 0.0, 1.0), Vec3(0.5, 0.5, 0.5)), field, 0.8, 8, &scratch, &out);
+  EXPECT_TRUE(out.empty());
+}
+
+TEST(BodyContactTest, WheelAtARockEdgeIsPushedTowardsItsCentre) {
+  TaskSpec task = test::PlaneTask(64.0);
+  task.rocks.push_back({0.0, 0.0, 0.1});  // 0.44 x 0.44 x 0.38 m: a low block, west face x -0.22
+  const Terrain ground(task);
+  const ObstacleField field(task, ground);
+  const double r = 0.467;
+  // wheel (axis y) rolling east onto the block's top west edge (x -0.22, z 0.38): its centre
+  // 0.3 m west of the edge and 0.25 m above it, 3.2 cm inside the tread
+  const Vec3 center(-0.52, 0.0, 0.63);
+  ContactScratch scratch;
+  std::vector<BodyContact> out;
+  WheelObstacleContacts(center, Vec3::UnitY(), r, 0.127, field, 0.9, 4, &scratch, &out);
+  ASSERT_FALSE(out.empty());
+  const Vec3 edge(-0.22, 0.0, 0.38);
+  const Vec3 expected_normal = (center - edge).normalized();  // up and back: the wheel climbs
+  bool found = false;
+  for (const BodyContact& c : out) {
+    EXPECT_GT(c.normal_W.z(), 0.5);
+    EXPECT_LT(c.normal_W.x(), 0.0);
+    if (std::abs(c.point_W.y()) < 0.03) {
+      EXPECT_NEAR(c.normal_W.dot(expected_normal), 1.0, 1e-3);
+      EXPECT_NEAR(c.depth_m, r - (center - edge).norm(), 2e-3);
+      found = true;
+    }
+  }
+  EXPECT_TRUE(found);
+  EXPECT_DOUBLE_EQ(out[0].friction, 0.8);  // min(tire 0.9, rock 0.8)
+}
+
+TEST(BodyContactTest, WheelStandingOnARockTopIsPushedUp) {
+  TaskSpec task = test::PlaneTask(64.0);
+  task.rocks.push_back({0.0, 0.0, 1.0});  // top face at z 3.8
+  const Terrain ground(task);
+  const ObstacleField field(task, ground);
+  ContactScratch scratch;
+  std::vector<BodyContact> out;
+  WheelObstacleContacts(Vec3(0.5, 0.3, 3.8 + 0.46), Vec3::UnitY(), 0.467, 0.127, field, 0.9, 4,
+                        &scratch, &out);
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_EQ(out[0].normal_W, Vec3::UnitZ());
+  EXPECT_NEAR(out[0].depth_m, 0.007, 1e-12);
+  EXPECT_NEAR(out[0].point_W.z(), 3.8 - 0.007, 1e-12);
+}
+
+TEST(BodyContactTest, ReductionKeepsTheDeepestAndSpreadsTheRest) {
+  std::vector<BodyContact> c(5);
+  const double xs[5] = {0.0, 0.1, 1.0, 2.0, 2.1};
+  for (int i = 0; i < 5; ++i) {
+    c[i].point_W = Vec3(xs[i], 0, 0);
+    c[i].depth_m = 0.01;
+  }
+  c[2].depth_m = 0.05;
+  std::vector<char> taken;
+  std::vector<BodyContact> out;
+  ReduceContacts(c, 3, &taken, &out);
+  ASSERT_EQ(out.size(), 3u);
+  EXPECT_EQ(out[0].point_W.x(), 1.0);  // deepest
+  EXPECT_EQ(out[1].point_W.x(), 2.1);  // then the farthest from it
+  EXPECT_EQ(out[2].point_W.x(), 0.0);  // then the farthest from both
+}
+
+}  // namespace
+}  // namespace vb::terrain
