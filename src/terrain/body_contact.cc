@@ -39,25 +39,31 @@ void ReduceContacts(const std::vector<BodyContact>& c, int max_contacts, std::ve
   }
 }
 
+double MaxGroundHeightUnder(const Vec3& lo, const Vec3& hi, const Terrain& ground) {
+  const HeightGrid& g = ground.grid();
+  const double west = -0.5 * ground.size_x_m(), north = 0.5 * ground.size_y_m();
+  const double dx = ground.spacing_x_m(), dy = ground.spacing_y_m();
+  const int c0 = std::max(0, static_cast<int>(std::floor((lo.x() - west) / dx)));
+  const int c1 = std::min(g.cols - 1, static_cast<int>(std::ceil((hi.x() - west) / dx)));
+  const int r0 = std::max(0, static_cast<int>(std::floor((north - hi.y()) / dy)));
+  const int r1 = std::min(g.rows - 1, static_cast<int>(std::ceil((north - lo.y()) / dy)));
+  // the cells covering the box (vertices one cell beyond it included): the surface is piecewise
+  // linear, so its maximum over the footprint is at one of them; the centre covers a footprint
+  // outside the grid (clamped heights)
+  double max_h = ground.Height(0.5 * (lo.x() + hi.x()), 0.5 * (lo.y() + hi.y()));
+  for (int r = r0; r <= r1; ++r)
+    for (int c = c0; c <= c1; ++c) max_h = std::max(max_h, g.At(r, c));
+  return max_h;
+}
+
 void GroundContacts(const engine::ConvexShape& body, const Terrain& ground, double body_friction,
                     int max_contacts, ContactScratch* scratch, std::vector<BodyContact>* out) {
   std::vector<BodyContact>& cand = scratch->candidates;
   cand.clear();
-  // Highest ground vertex under the body's footprint (plus the body's own corners' heights, which
-  // cover a footprint smaller than a cell): nothing below it can touch.
+  const double max_h = MaxGroundHeightUnder(body.aabb_min, body.aabb_max, ground);
   const HeightGrid& g = ground.grid();
   const double west = -0.5 * ground.size_x_m(), north = 0.5 * ground.size_y_m();
   const double dx = ground.spacing_x_m(), dy = ground.spacing_y_m();
-  const int c0 = std::max(0, static_cast<int>(std::floor((body.aabb_min.x() - west) / dx)));
-  const int c1 = std::min(g.cols - 1, static_cast<int>(std::ceil((body.aabb_max.x() - west) / dx)));
-  const int r0 = std::max(0, static_cast<int>(std::floor((north - body.aabb_max.y()) / dy)));
-  const int r1 = std::min(g.rows - 1, static_cast<int>(std::ceil((north - body.aabb_min.y()) / dy)));
-  double max_h = -1e300;
-  for (int r = r0; r <= r1; ++r)
-    for (int c = c0; c <= c1; ++c) max_h = std::max(max_h, g.At(r, c));
-  if (c0 > c1 || r0 > r1) max_h = ground.Height(body.aabb_min.x(), body.aabb_min.y());
-  max_h = std::max(max_h, ground.Height(0.5 * (body.aabb_min.x() + body.aabb_max.x()),
-                                        0.5 * (body.aabb_min.y() + body.aabb_max.y())));
   if (body.aabb_min.z() > max_h) return;
 
   // Body samples below the surface: push along the surface normal.

@@ -390,14 +390,23 @@ void Vehicle::AddBodyContacts() {
   Pose reference;
   reference.rotation = com.rotation;
   reference.position = com.position - com.rotation * in_->com_B;
+  // Each piece is posed without its sample points first: most steps the quick rejects (above the
+  // ground under it, no obstacle near) end there.
   for (size_t k = 0; k < b.for_ground_B.size(); ++k) {
-    b.for_ground_B[k].TransformInto(reference, &b.posed);
-    terrain::GroundContacts(b.posed, terrain_, kBodyFriction, kMaxGroundContactsPerPiece,
-                            &b.scratch, &b.contacts);
+    b.for_ground_B[k].TransformInto(reference, &b.posed, /*with_samples=*/false);
+    if (b.posed.aabb_min.z() <=
+        terrain::MaxGroundHeightUnder(b.posed.aabb_min, b.posed.aabb_max, terrain_)) {
+      b.for_ground_B[k].TransformSamplesInto(reference, &b.posed);
+      terrain::GroundContacts(b.posed, terrain_, kBodyFriction, kMaxGroundContactsPerPiece,
+                              &b.scratch, &b.contacts);
+    }
     if (obstacles_ != nullptr) {
-      b.for_obstacles_B[k].TransformInto(reference, &b.posed);
-      terrain::ObstacleContacts(b.posed, *obstacles_, kBodyFriction, kMaxObstacleContactsPerPiece,
-                                &b.scratch, &b.contacts);
+      obstacles_->Overlapping(b.posed.aabb_min, b.posed.aabb_max, &b.scratch.obstacles);
+      if (!b.scratch.obstacles.empty()) {
+        b.for_obstacles_B[k].TransformInto(reference, &b.posed);
+        terrain::ObstacleContacts(b.posed, *obstacles_, kBodyFriction,
+                                  kMaxObstacleContactsPerPiece, &b.scratch, &b.contacts);
+      }
     }
   }
   state_.body_ground_contacts = 0;

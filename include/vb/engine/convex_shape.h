@@ -29,8 +29,10 @@ struct ConvexShape {
   double SignedDistance(const Vec3& p, int* face) const;
   // The same shape moved by `pose` (vertices, planes, samples, box).
   ConvexShape Transformed(const Pose& pose) const;
-  // Transformed into *out, reusing its storage (no allocation once sized).
-  void TransformInto(const Pose& pose, ConvexShape* out) const;
+  // Transformed into *out, reusing its storage (no allocation once sized). Without samples, only
+  // vertices, faces, edges and the box: enough for a quick reject; TransformSamplesInto adds them.
+  void TransformInto(const Pose& pose, ConvexShape* out, bool with_samples = true) const;
+  void TransformSamplesInto(const Pose& pose, ConvexShape* out) const;
 };
 
 // An axis-aligned box of half extents `half_m` centred at `center` (8 vertices, 6 faces).

@@ -44,6 +44,10 @@ struct ContactScratch {
   std::vector<char> taken;
 };
 
+// The highest the ground gets under the box [lo, hi] (grid vertices in its footprint and the
+// surface at its centre): a body entirely above it cannot touch the ground.
+double MaxGroundHeightUnder(const Vec3& lo, const Vec3& hi, const Terrain& ground);
+
 // Appends to *out at most max_contacts contacts of `body_W` (a convex piece posed in the world)
 // with the ground; body_friction combines with the patch's by the minimum.
 void GroundContacts(const engine::ConvexShape& body_W, const Terrain& ground, double body_friction,

@@ -21,7 +21,13 @@ double ConvexShape::SignedDistance(const Vec3& p, int* face) const {
   return best;
 }
 
-void ConvexShape::TransformInto(const Pose& pose, ConvexShape* out) const {
+void ConvexShape::TransformSamplesInto(const Pose& pose, ConvexShape* out) const {
+  const Mat3 r = pose.rotation.toRotationMatrix();
+  out->samples.resize(samples.size());
+  for (size_t i = 0; i < samples.size(); ++i) out->samples[i] = pose.position + r * samples[i];
+}
+
+void ConvexShape::TransformInto(const Pose& pose, ConvexShape* out, bool with_samples) const {
   const Mat3 r = pose.rotation.toRotationMatrix();
   out->vertices.resize(vertices.size());
   for (size_t i = 0; i < vertices.size(); ++i) out->vertices[i] = pose.position + r * vertices[i];
@@ -31,8 +37,11 @@ void ConvexShape::TransformInto(const Pose& pose, ConvexShape* out) const {
     out->faces[f].offset = faces[f].offset + out->faces[f].normal.dot(pose.position);
   }
   out->edges = edges;
-  out->samples.resize(samples.size());
-  for (size_t i = 0; i < samples.size(); ++i) out->samples[i] = pose.position + r * samples[i];
+  if (with_samples) {
+    TransformSamplesInto(pose, out);
+  } else {
+    out->samples.clear();
+  }
   out->aabb_min = Vec3::Constant(1e300);
   out->aabb_max = Vec3::Constant(-1e300);
   for (const Vec3& v : out->vertices) {
