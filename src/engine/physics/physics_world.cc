@@ -30,11 +30,20 @@ Quat FromBt(const btMatrix3x3& m) {
 // Bullet's persistent manifolds hold at most 4 points (MANIFOLD_CACHE_SIZE).
 constexpr int kPointsPerManifold = 4;
 
+// Bullet's default pools hold 4096 manifolds and collision algorithms; vb uses a few manifolds
+// per step and no algorithms, and a trial builds a world: small pools make that cheap.
+btDefaultCollisionConstructionInfo SmallPools() {
+  btDefaultCollisionConstructionInfo info;
+  info.m_defaultMaxPersistentManifoldPoolSize = 64;
+  info.m_defaultMaxCollisionAlgorithmPoolSize = 16;
+  return info;
+}
+
 }  // namespace
 
 struct PhysicsWorld::Impl {
   // Bullet world pieces; order of declaration = reverse order of destruction requirements.
-  btDefaultCollisionConfiguration config;
+  btDefaultCollisionConfiguration config{SmallPools()};
   btCollisionDispatcher dispatcher{&config};
   btDbvtBroadphase broadphase;
   btMultiBodyConstraintSolver solver;
@@ -59,6 +68,14 @@ struct PhysicsWorld::Impl {
     // Link velocities in link frames (index 0 = base), refreshed lazily after each Step.
     mutable btAlignedObjectArray<btVector3> omega, vel;
     mutable bool velocities_valid = false;
+    // Link poses of the current state, computed on first request (the vehicle reads each wheel's
+    // pose several times between two steps; the chain walk is Bullet's costliest read-out).
+    mutable std::vector<Pose> link_pose;
+    mutable std::vector<char> link_pose_valid;
+    void Invalidate() const {
+      velocities_valid = false;
+      std::fill(link_pose_valid.begin(), link_pose_valid.end(), 0);
+    }
     // Scratch of forwardKinematics.
     btAlignedObjectArray<btQuaternion> world_to_local;
     btAlignedObjectArray<btVector3> local_origin;
@@ -178,6 +195,8 @@ MultiBodyId PhysicsWorld::AddMultiBody(const MultiBodyBaseSpec& base,
   mb->forwardKinematics(body.world_to_local, body.local_origin);
   mb->updateCollisionObjectWorldTransforms(body.world_to_local, body.local_origin);
   body.motors.resize(n);
+  body.link_pose.resize(static_cast<size_t>(n));
+  body.link_pose_valid.assign(static_cast<size_t>(n), 0);
   body.omega.resize(n + 1);
   body.vel.resize(n + 1);
   impl_->bodies.push_back(std::move(body));
@@ -189,7 +208,7 @@ void PhysicsWorld::SetJointPosition(MultiBodyId id, int link, double q) {
   b.mb->setJointPos(link, q);
   b.mb->forwardKinematics(b.world_to_local, b.local_origin);
   b.mb->updateCollisionObjectWorldTransforms(b.world_to_local, b.local_origin);
-  b.velocities_valid = false;
+  b.Invalidate();
 }
 
 MultiBodyState PhysicsWorld::GetState(MultiBodyId id) const {
@@ -223,7 +242,7 @@ void PhysicsWorld::SetState(MultiBodyId id, const MultiBodyState& s) {
   mb->clearForcesAndTorques();
   mb->forwardKinematics(b.world_to_local, b.local_origin);
   mb->updateCollisionObjectWorldTransforms(b.world_to_local, b.local_origin);
-  b.velocities_valid = false;
+  b.Invalidate();
 }
 
 void PhysicsWorld::ApplyLinkForce(MultiBodyId id, int link, const Vec3& force_W,
@@ -285,11 +304,15 @@ Vec3 PhysicsWorld::BaseAngularVelocity(MultiBodyId id) const {
 }
 
 Pose PhysicsWorld::LinkPose(MultiBodyId id, int link) const {
-  const btMultiBody* mb = impl_->Get(id).mb.get();
-  Pose p;
-  p.position = FromBt(mb->localPosToWorld(link, btVector3(0, 0, 0)));
-  p.rotation = FromBt(mb->localFrameToWorld(link, btMatrix3x3::getIdentity()));
-  return p;
+  const Impl::Body& b = impl_->Get(id);
+  const size_t i = static_cast<size_t>(link);
+  if (!b.link_pose_valid[i]) {
+    const btMultiBody* mb = b.mb.get();
+    b.link_pose[i].position = FromBt(mb->localPosToWorld(link, btVector3(0, 0, 0)));
+    b.link_pose[i].rotation = FromBt(mb->localFrameToWorld(link, btMatrix3x3::getIdentity()));
+    b.link_pose_valid[i] = 1;
+  }
+  return b.link_pose[i];
 }
 
 Vec3 PhysicsWorld::LinkPointVelocity(MultiBodyId id, int link, const Vec3& point_W) const {
@@ -364,7 +387,7 @@ void PhysicsWorld::Step(double dt) {
   for (btPersistentManifold* mf : m.manifolds) m.dispatcher.releaseManifold(mf);
   m.manifolds.clear();
   for (auto& b : m.bodies) {
-    b.velocities_valid = false;
+    b.Invalidate();
     b.mb->clearForcesAndTorques();
   }
 
