@@ -57,18 +57,20 @@ std::vector<std::string> CanonicalLevels(const std::string& factor) {
 }
 
 std::string StatsCsvHeader() {
-  return "trials,ran,success,rollover,stuck,timeout,sim_error,error,crashed,success_pct,"
-         "rollover_pct,stuck_pct,timeout_pct,sim_error_pct,traversal_mean_s,traversal_var_s2,"
-         "roll_mean_deg,roll_var_deg2,pitch_mean_deg,pitch_var_deg2";
+  return "trials,ran,success,rollover,stuck,timeout,sim_error,out_of_bounds,error,crashed,"
+         "success_pct,rollover_pct,stuck_pct,timeout_pct,sim_error_pct,out_of_bounds_pct,"
+         "traversal_mean_s,traversal_var_s2,roll_mean_deg,roll_var_deg2,pitch_mean_deg,"
+         "pitch_var_deg2";
 }
 std::string StatsCsv(const GroupStats& s) {
   std::string t;
-  for (int n : {s.trials, s.ran, s.success, s.rollover, s.stuck, s.timeout, s.sim_error, s.error,
-                s.crashed}) {
+  for (int n : {s.trials, s.ran, s.success, s.rollover, s.stuck, s.timeout, s.sim_error,
+                s.out_of_bounds, s.error, s.crashed}) {
     t += std::to_string(n) + ",";
   }
   const double v[] = {s.success_pct,      s.rollover_pct,     s.stuck_pct,     s.timeout_pct,
-                      s.sim_error_pct,    s.traversal_mean_s, s.traversal_var_s2,
+                      s.sim_error_pct,    s.out_of_bounds_pct, s.traversal_mean_s,
+                      s.traversal_var_s2,
                       s.roll_mean_deg,    s.roll_var_deg2,    s.pitch_mean_deg, s.pitch_var_deg2};
   for (size_t i = 0; i < sizeof(v) / sizeof(v[0]); ++i) t += (i ? "," : "") + Num(v[i]);
   return t;
@@ -109,6 +111,8 @@ GroupStats Aggregate(const std::vector<const TrialRow*>& rows) {
       ++s.stuck;
     } else if (st == "timeout") {
       ++s.timeout;
+    } else if (st == "out_of_bounds") {
+      ++s.out_of_bounds;
     } else {
       ++s.sim_error;
     }
@@ -118,6 +122,7 @@ GroupStats Aggregate(const std::vector<const TrialRow*>& rows) {
   s.stuck_pct = Pct(s.stuck, s.ran);
   s.timeout_pct = Pct(s.timeout, s.ran);
   s.sim_error_pct = Pct(s.sim_error, s.ran);
+  s.out_of_bounds_pct = Pct(s.out_of_bounds, s.ran);
   MeanVar(times, &s.traversal_mean_s, &s.traversal_var_s2);
   MeanVar(rolls, &s.roll_mean_deg, &s.roll_var_deg2);
   MeanVar(pitches, &s.pitch_mean_deg, &s.pitch_var_deg2);
@@ -175,13 +180,15 @@ std::string ReportMarkdown(const Report& report) {
        "mean |angle|.\n\n";
   t += "## Table I: outcomes per system\n\n";
   t += "| system | trials | ran | success % | rollover % | stuck % | timeout % | sim_error % | "
-       "error | crashed |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+       "out of bounds % | error | crashed |\n"
+       "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   for (const Table1Row& r : report.table1) {
     const GroupStats& s = r.stats;
     t += "| " + r.system + " | " + std::to_string(s.trials) + " | " + std::to_string(s.ran) +
          " | " + Cell(s.success_pct, 1) + " | " + Cell(s.rollover_pct, 1) + " | " +
          Cell(s.stuck_pct, 1) + " | " + Cell(s.timeout_pct, 1) + " | " +
-         Cell(s.sim_error_pct, 1) + " | " + std::to_string(s.error) + " | " +
+         Cell(s.sim_error_pct, 1) + " | " + Cell(s.out_of_bounds_pct, 1) + " | " +
+         std::to_string(s.error) + " | " +
          std::to_string(s.crashed) + " |\n";
   }
   for (const std::string& factor : FactorNames()) {

@@ -103,7 +103,8 @@ uint64_t ParseU64(const std::string& s, const std::string& source, int line, con
 }  // namespace
 
 bool IsRunnerStatus(const std::string& s) {
-  return s == "success" || s == "rollover" || s == "stuck" || s == "timeout" || s == "sim_error";
+  return s == "success" || s == "rollover" || s == "stuck" || s == "timeout" || s == "sim_error" ||
+         s == "out_of_bounds";
 }
 bool IsKnownStatus(const std::string& s) {
   return IsRunnerStatus(s) || s == "error" || s == "crashed";

@@ -111,7 +111,7 @@ TEST(AggregateTest, TextOutputsAreDeterministicAndOrderIndependent) {
   EXPECT_EQ(Table1Csv(a), Table1Csv(b));
   EXPECT_EQ(FactorsCsv(a), FactorsCsv(b));
   EXPECT_EQ(ReportMarkdown(a), ReportMarkdown(b));
-  EXPECT_NE(ReportMarkdown(a).find("| pid/hmmwv | 6 | 4 | 50.0 | 25.0 | 25.0 | 0.0 | 0.0 | 1 | 1 |"),
+  EXPECT_NE(ReportMarkdown(a).find("| pid/hmmwv | 6 | 4 | 50.0 | 25.0 | 25.0 | 0.0 | 0.0 | 0.0 | 1 | 1 |"),
             std::string::npos)
       << ReportMarkdown(a);
 }

@@ -88,7 +88,8 @@ TEST_F(VbBatchTest, FullRunRecordsEveryTrialWithItsStatus) {
       << index;
   EXPECT_EQ(index.find(",error,"), std::string::npos) << index;
   // Table I agrees with the index: the outcomes themselves are physics, the counting is not.
-  const std::vector<std::string> statuses = {"success", "rollover", "stuck", "timeout", "sim_error"};
+  const std::vector<std::string> statuses = {"success", "rollover", "stuck", "timeout", "sim_error",
+                                             "out_of_bounds"};
   std::vector<int> counts;
   int ran = 0;
   for (const std::string& st : statuses) {

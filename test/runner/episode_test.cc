@@ -11,6 +11,7 @@
 #include "io/soil_io.h"
 #include "io/vehicle_io.h"
 #include "vb/engine/error.h"
+#include "support/worlds.h"
 #include "vb/engine/runner/result_digest.h"
 
 namespace vb::runner {
@@ -318,6 +319,42 @@ TEST(EpisodeApiTest, NoTrajectoryWhenAskedForNone) {
   const TrialResult r = DriveStraight(&episode, 200);
   EXPECT_TRUE(r.trajectory.empty());
   EXPECT_GT(r.path_length_m, 1.0);
+}
+
+TEST(EpisodeApiTest, LeavingTheWorldIsOutOfBoundsAtOnce) {
+  terrain::TaskSpec task = FlatTask();
+  task.pairs[0].start_m = Vec2(50.0, 0.0);
+  task.pairs[0].goal_m = Vec2(50.0, 40.0);  // due north; the vehicle is driven east instead
+  Episode episode(task, Hmmwv());
+  episode.Reset(TrialSpec());
+  // face east: drive with full left lock until heading east... simpler: the start faces the goal
+  // (north); turn right at full lock, then straight: it reaches the east edge (x 64) in seconds
+  for (int i = 0; i < 12000 && !episode.Done(); ++i) {
+    const double yaw = episode.vehicle_state().rpy.yaw_rad;
+    episode.Step({1.0, std::clamp(-2.0 * yaw, -1.0, 1.0), 0.0});
+  }
+  const TrialResult r = episode.Result();
+  EXPECT_EQ(r.status, TrialStatus::kOutOfBounds) << r.message;
+  EXPECT_GT(r.trajectory.back().position_W.x(), 64.0);
+  EXPECT_LT(r.trajectory[r.trajectory.size() - 2].position_W.x(), 64.0);  // ended at once
+  EXPECT_NE(r.message.find("left the world"), std::string::npos);
+  EXPECT_EQ(TrialStatusName(TrialStatus::kOutOfBounds), "out_of_bounds");
+}
+
+TEST(EpisodeApiTest, TippingPastFortyFiveDegreesIsRecorded) {
+  // a 40 deg side slope rising to the north, the vehicle facing east: it rolls over downhill
+  const terrain::TaskSpec task = test::PlaneTask(128.0, 0.0, std::tan(40.0 * kPi / 180.0));
+  Episode episode(task, Hmmwv());
+  episode.Reset(TrialSpec());
+  for (int i = 0; i < 2000 && !episode.Done(); ++i) episode.Step({0.0, 0.0, 1.0});
+  const TrialResult r = episode.Result();
+  EXPECT_TRUE(r.tipped);
+  EXPECT_GT(r.abs_roll_deg.max, 45.0);
+  // on flat ground nothing tips
+  Episode flat(FlatTask(), Hmmwv());
+  flat.Reset(TrialSpec());
+  for (int i = 0; i < 400; ++i) flat.Step({1.0, 0.0, 0.0});
+  EXPECT_FALSE(flat.Result().tipped);
 }
 
 TEST(EpisodeTest, StatusNames) {

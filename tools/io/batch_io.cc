@@ -155,11 +155,12 @@ std::vector<std::string> WriteReportPlots(const batch::Report& report, const std
     BarChart c;
     c.title = "Table I: outcomes per system";
     c.y_label = "% of trials that ran";
-    c.series_labels = {"success", "rollover", "stuck", "timeout", "sim_error"};
+    c.series_labels = {"success", "rollover", "stuck", "timeout", "sim_error", "out_of_bounds"};
     for (const batch::Table1Row& r : report.table1) {
       c.group_labels.push_back(r.system);
       c.values.push_back({r.stats.success_pct, r.stats.rollover_pct, r.stats.stuck_pct,
-                          r.stats.timeout_pct, r.stats.sim_error_pct});
+                          r.stats.timeout_pct, r.stats.sim_error_pct,
+                          r.stats.out_of_bounds_pct});
     }
     c.y_max = 100.0;
     if (!c.group_labels.empty()) {

@@ -197,6 +197,7 @@ void WriteTrialJson(const runner::TrialResult& r, const std::string& path,
   o.Num("final_goal_distance_m", r.final_goal_distance_m);
   o.Num("path_length_m", r.path_length_m);
   o.Int("obstacle_contacts", r.obstacle_contacts);
+  o.Raw("tipped", r.tipped ? "true" : "false");
   o.Raw("roll_deg", StatsJson(r.roll_deg));
   o.Raw("pitch_deg", StatsJson(r.pitch_deg));
   o.Raw("abs_roll_deg", StatsJson(r.abs_roll_deg));

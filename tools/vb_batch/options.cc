@@ -37,8 +37,9 @@ execution:
 
 outputs in DIR: trials/<task>_p<K>_s<seed>_<vehicle>_<system>.json and _traj.csv per trial,
 index.csv (one row per finished trial of this shard), batch.json (matrix and settings).
-Trial status: success, rollover, stuck, timeout, sim_error (the runner's), error (trial could not
-be set up, e.g. a task file that does not load) or crashed (worker died; retried on the next run).
+Trial status: success, rollover, stuck, timeout, sim_error, out_of_bounds (the runner's), error
+(trial could not be set up, e.g. a task file that does not load) or crashed (worker died;
+retried on the next run).
 
 exit codes: 0 every trial has a record; 1 internal error; 2 bad input (flags, stale results,
 another vb_batch running on DIR); 130/143 interrupted by SIGINT/SIGTERM (running trials are

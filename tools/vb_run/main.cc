@@ -45,7 +45,8 @@ outputs, per trial, in DIR:
 and DIR/summary.csv with one row per trial of this run. Files are written atomically.
 
 exit codes:
-  0  all trials ran (whatever their status: success, rollover, stuck, timeout, sim_error)
+  0  all trials ran (whatever their status: success, rollover, stuck, timeout, sim_error,
+     out_of_bounds)
   1  internal error
   2  bad input (task, vehicle, system, pair, flags); the message names the culprit
 )";
@@ -141,7 +142,7 @@ int Run(const Options& o) {
   rules.time_limit_s = o.time_limit_s;
   rules.trajectory_every_n_steps = o.traj_every;
   std::vector<vb::runner::TrialResult> results;
-  int counts[5] = {0, 0, 0, 0, 0};
+  int counts[vb::runner::kNumTrialStatuses] = {};
   for (int k : pairs) {
     vb::runner::TrialSpec spec;
     spec.pair_index = k;
@@ -169,10 +170,11 @@ int Run(const Options& o) {
 
   const double n = std::max<double>(1.0, static_cast<double>(results.size()));
   std::printf("%zu trials: success %d (%.0f%%), rollover %d (%.0f%%), stuck %d (%.0f%%), "
-              "timeout %d (%.0f%%), sim_error %d (%.0f%%); results in %s\n",
+              "timeout %d (%.0f%%), sim_error %d (%.0f%%), out_of_bounds %d (%.0f%%); results in "
+              "%s\n",
               results.size(), counts[0], 100.0 * counts[0] / n, counts[1], 100.0 * counts[1] / n,
               counts[2], 100.0 * counts[2] / n, counts[3], 100.0 * counts[3] / n, counts[4],
-              100.0 * counts[4] / n, out_dir.c_str());
+              100.0 * counts[4] / n, counts[5], 100.0 * counts[5] / n, out_dir.c_str());
   return 0;
 }
 

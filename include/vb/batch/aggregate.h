@@ -1,7 +1,8 @@
 // Aggregation of batch results into the paper's tables (docs/reports.md has the rules):
 //   * Denominator: trials that ran (the runner's five statuses). `error` and `crashed` trials did
 //     not run the system under test; they are counted and shown separately, never as failures.
-//   * success / rollover / stuck / timeout / sim_error %: count / trials that ran.
+//   * success / rollover / stuck / timeout / sim_error / out_of_bounds %: count / trials that
+//     ran (out_of_bounds: the vehicle left the world, a failure).
 //   * traversal time: mean and population variance over successful trials only.
 //   * roll and pitch: each trial contributes its mean |roll| (|pitch|) over all its steps; the
 //     group's mean and population variance are taken over those per-trial means of successful
@@ -20,10 +21,10 @@ namespace vb::batch {
 struct GroupStats {
   int trials = 0;          // all rows of the group
   int ran = 0;             // rows with a runner status (the denominator)
-  int success = 0, rollover = 0, stuck = 0, timeout = 0, sim_error = 0;
+  int success = 0, rollover = 0, stuck = 0, timeout = 0, sim_error = 0, out_of_bounds = 0;
   int error = 0, crashed = 0;
   double success_pct = 0.0, rollover_pct = 0.0, stuck_pct = 0.0, timeout_pct = 0.0,
-         sim_error_pct = 0.0;                       // NaN when ran == 0
+         sim_error_pct = 0.0, out_of_bounds_pct = 0.0;   // NaN when ran == 0
   double traversal_mean_s = 0.0, traversal_var_s2 = 0.0;   // NaN when no success
   double roll_mean_deg = 0.0, roll_var_deg2 = 0.0;         // NaN when no success
   double pitch_mean_deg = 0.0, pitch_var_deg2 = 0.0;

@@ -9,8 +9,8 @@
 
 namespace vb::batch {
 
-// Statuses of a trial in a batch: the runner's five (success, rollover, stuck, timeout,
-// sim_error) plus two for trials that did not produce a runner result:
+// Statuses of a trial in a batch: the runner's six (success, rollover, stuck, timeout,
+// sim_error, out_of_bounds) plus two for trials that did not produce a runner result:
 //   error   - the trial could not be set up (bad or unsupported input, e.g. deformable terrain
 //             before the soil solver exists); deterministic, not retried on resume
 //   crashed - the trial's worker process died (signal, internal error, wall-clock limit); retried

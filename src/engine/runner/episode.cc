@@ -140,6 +140,7 @@ std::string_view TrialStatusName(TrialStatus s) {
     case TrialStatus::kStuck: return "stuck";
     case TrialStatus::kTimeout: return "timeout";
     case TrialStatus::kSimError: return "sim_error";
+    case TrialStatus::kOutOfBounds: return "out_of_bounds";
   }
   return "unknown";
 }
@@ -162,19 +163,19 @@ struct Episode::Impl {
       : task(task_in),
         vehicle_params(vehicle_in),
         rules(rules_in),
-        soil_config(soil_in),
-        ground(task_in),
-        inflated(terrain::Inflate(terrain::RasterizeObstacles(task_in),
-                                  terrain::PlannerInflationCells(task_in))),
-        maps(task_in, /*inflation_cells=*/0),
-        obstacles(task_in, ground),
-        builder(maps, inflated, task_in.scale) {}
+        soil_config(soil_in != nullptr ? std::optional<soil::SoilConfig>(*soil_in) : std::nullopt),
+        ground(task),
+        inflated(terrain::Inflate(terrain::RasterizeObstacles(task),
+                                  terrain::PlannerInflationCells(task))),
+        maps(task, /*inflation_cells=*/0),
+        obstacles(task, ground),
+        builder(maps, inflated, task.scale) {}
 
-  // --- static world (per Episode) ---
-  const terrain::TaskSpec& task;
-  const vehicles::VehicleParams& vehicle_params;
+  // --- static world (per Episode; its own copies of the inputs) ---
+  const terrain::TaskSpec task;
+  const vehicles::VehicleParams vehicle_params;
   const EpisodeRules rules;
-  const soil::SoilConfig* soil_config;
+  const std::optional<soil::SoilConfig> soil_config;
   const terrain::Terrain ground;
   // The planning grid as the original: obstacle footprints dilated by 4 m * scale.
   const terrain::OccupancyGrid inflated;
@@ -259,7 +260,7 @@ void Episode::Impl::PhysicsStep() {
     return;
   }
 
-  metrics.AddStep(s, progress.inputs);
+  metrics.AddStep(s, progress.inputs, rules.tipped_roll_rad);
   metrics.AddContacts(progress.k, world->ObstacleContacts(), vehicle->body(), task.rocks.size());
   const int every = rules.trajectory_every_n_steps;
   if (every > 0 && progress.k % every == 0) {
@@ -273,6 +274,12 @@ void Episode::Impl::PhysicsStep() {
     progress.status = TrialStatus::kSuccess;
     progress.traversal_time_s = t;
     progress.message = "reached the goal";
+    progress.decided = true;
+    Finish();
+  } else if (std::abs(xy.x()) > 0.5 * task.size_x_m || std::abs(xy.y()) > 0.5 * task.size_y_m) {
+    // Off the edge of the world (the original's RL interface: "fallen off"): a failure of its own.
+    progress.status = TrialStatus::kOutOfBounds;
+    progress.message = "left the world at (" + Fmt(xy.x()) + ", " + Fmt(xy.y()) + ") m";
     progress.decided = true;
     Finish();
   } else if (rules.end_early && (std::abs(s.rpy.roll_rad) > kTippedOverRoll_rad ||

@@ -52,6 +52,7 @@ std::string TrialDigest(const TrialResult& r) {
   h.Add(r.final_goal_distance_m);
   h.Add(r.path_length_m);
   h.Add(static_cast<long long>(r.obstacle_contacts));
+  h.Add(static_cast<long long>(r.tipped));
   for (const SignalStats* s : {&r.roll_deg, &r.pitch_deg, &r.abs_roll_deg, &r.abs_pitch_deg,
                                &r.throttle, &r.steering, &r.abs_steering}) {
     h.Add(*s);

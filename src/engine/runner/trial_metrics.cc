@@ -42,7 +42,9 @@ void TrialMetrics::StartPosition(const Vec2& xy) {
   last_xy_ = xy;
 }
 
-void TrialMetrics::AddStep(const vehicles::VehicleState& s, const vehicles::DriverInputs& inputs) {
+void TrialMetrics::AddStep(const vehicles::VehicleState& s, const vehicles::DriverInputs& inputs,
+                           double tipped_roll_rad) {
+  if (std::abs(s.rpy.roll_rad) > tipped_roll_rad) tipped_ = true;
   const double roll_deg = s.rpy.roll_rad * kRadToDeg;
   const double pitch_deg = s.rpy.pitch_rad * kRadToDeg;
   roll_.Add(roll_deg);
@@ -74,6 +76,7 @@ void TrialMetrics::AddContacts(long k, const std::vector<engine::ObstacleContact
 void TrialMetrics::Fill(TrialResult* r) const {
   r->path_length_m = path_length_m_;
   r->obstacle_contacts = obstacle_contacts_;
+  r->tipped = tipped_;
   r->roll_deg = roll_.Get();
   r->pitch_deg = pitch_.Get();
   r->abs_roll_deg = abs_roll_.Get();

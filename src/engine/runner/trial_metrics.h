@@ -77,7 +77,8 @@ class TrialMetrics {
                size_t trajectory_capacity);
 
   // After every physics step k (>= 1): statistics, path length, stuck window.
-  void AddStep(const vehicles::VehicleState& s, const vehicles::DriverInputs& inputs);
+  void AddStep(const vehicles::VehicleState& s, const vehicles::DriverInputs& inputs,
+               double tipped_roll_rad);
   // Obstacle contact events of step k: a touch starts a new event only after contact_gap_steps
   // out of contact, so a wheel bouncing on a rock face counts once.
   void AddContacts(long k, const std::vector<engine::ObstacleContact>& contacts,
@@ -96,6 +97,7 @@ class TrialMetrics {
   Vec2 last_xy_ = Vec2::Zero();
   double path_length_m_ = 0.0;
   int obstacle_contacts_ = 0;
+  bool tipped_ = false;
   long contact_gap_steps_ = 0;
   std::vector<long> last_touch_step_;  // per obstacle (rocks first, then trees)
   std::vector<TrajectorySample> trajectory_;

@@ -2,8 +2,9 @@
 // stepped, observed, snapshotted and restored (docs/architecture.md "Episode"); RunTrial is a
 // short loop over it with a controller.
 // Episode rules (docs/architecture.md §4): success when the reference point is within
-// 10 m * scale (planar) of the goal before 60 s; otherwise at the end: rollover (|roll| > 30 deg),
-// stuck (moved <= 1 m * scale in the last 10 s), timeout, or sim_error (numerical trouble).
+// 10 m * scale (planar) of the goal before 60 s; out_of_bounds as soon as it leaves the world;
+// otherwise at the end: rollover (|roll| > 30 deg), stuck (moved <= 1 m * scale in the last
+// 10 s), timeout, or sim_error (numerical trouble).
 // The core does no I/O: results come back as data; tools/io writes them.
 #pragma once
 
@@ -21,7 +22,8 @@
 
 namespace vb::runner {
 
-enum class TrialStatus { kSuccess, kRollover, kStuck, kTimeout, kSimError };
+enum class TrialStatus { kSuccess, kRollover, kStuck, kTimeout, kSimError, kOutOfBounds };
+constexpr int kNumTrialStatuses = 6;
 std::string_view TrialStatusName(TrialStatus s);
 
 // Optional wall-clock breakdown of the stepping loop (benchmarks only; timing never feeds back
@@ -52,6 +54,7 @@ struct EpisodeRules {
   double time_limit_s = 60.0;
   double goal_radius_m = 10.0;         // scaled by task.scale
   double rollover_roll_rad = 30.0 * kPi / 180.0;
+  double tipped_roll_rad = 45.0 * kPi / 180.0;  // TrialResult::tipped: |roll| ever above this
   double stuck_window_s = 10.0;
   double stuck_distance_m = 1.0;       // scaled by task.scale
   double start_height_m = 0.5;         // drop height of the wheel bottoms above the terrain
@@ -102,6 +105,9 @@ struct TrialResult {
   double final_goal_distance_m = 0.0;
   double path_length_m = 0.0;          // driven planar distance
   int obstacle_contacts = 0;           // contact events with rocks/trees (re-touch within 0.5 s: same event)
+  // |roll| went above 45 deg at some step (a vehicle that rolls past it and falls back is not a
+  // rollover by the paper's end-of-trial rule, but it tipped); the peaks are abs_*_deg.max.
+  bool tipped = false;
   SignalStats roll_deg, pitch_deg, abs_roll_deg, abs_pitch_deg;
   SignalStats throttle, steering, abs_steering;
   double wall_time_s = 0.0;
@@ -130,10 +136,10 @@ class EpisodeSnapshot {
 
 class Episode {
  public:
-  // Builds the static world of `task` (terrain, ground-truth maps, planning grid). The task,
-  // vehicle parameters and soil configuration are kept by reference and must outlive the
-  // episode. Throws InputError for what cannot run: bad rules, a task with deformable patches but
-  // no soil parameters, more wheels than kMaxWheels.
+  // Builds the static world of `task` (terrain, ground-truth maps, planning grid, obstacles),
+  // keeping its own copies of the task, vehicle parameters and soil configuration. Throws
+  // InputError for what cannot run: bad rules, a task with deformable patches but no soil
+  // parameters, more wheels than kMaxWheels.
   Episode(const terrain::TaskSpec& task, const vehicles::VehicleParams& vehicle,
           const EpisodeRules& rules = EpisodeRules(), const soil::SoilConfig* soil = nullptr);
   ~Episode();
