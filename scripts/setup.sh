@@ -1,7 +1,19 @@
 #!/usr/bin/env bash
 # Installs what vb needs to build and test on Debian 12 (bookworm). Safe to re-run: installs only
 # missing packages. Needs root (or sudo).
+#
+#   scripts/setup.sh          what the build and the test suite need
+#   scripts/setup.sh --fuzz   also clang and its libFuzzer runtime, for the fuzz targets
+#                             (cmake -DVB_FUZZ=ON, fuzz/run_fuzz.sh; not part of the default build)
 set -euo pipefail
+
+fuzz=0
+for arg in "$@"; do
+  case "$arg" in
+    --fuzz) fuzz=1 ;;
+    *) echo "setup: unknown option $arg (valid: --fuzz)" >&2; exit 2 ;;
+  esac
+done
 
 packages=(
   cmake ninja-build g++ pkg-config git
@@ -11,6 +23,9 @@ packages=(
   libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev   # height images
   libgtest-dev                   # tests
 )
+if [ "$fuzz" -eq 1 ]; then
+  packages+=(clang libclang-rt-14-dev)   # Debian 12's clang 14 with -fsanitize=fuzzer
+fi
 
 missing=()
 for p in "${packages[@]}"; do

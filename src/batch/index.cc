@@ -5,8 +5,12 @@
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
+#include <map>
+#include <utility>
+#include <algorithm>
 
 #include "vb/engine/error.h"
+#include "vb/engine/file_name.h"
 #include "vb/engine/text_format.h"
 
 namespace vb::batch {
@@ -19,6 +23,8 @@ const char* const kColumns[] = {
     "mean_abs_roll_deg", "mean_abs_pitch_deg", "task_fnv1a64", "vb_version", "git_commit",
     "host",         "wall_time_s", "task_file",    "message"};
 constexpr size_t kNumColumns = sizeof(kColumns) / sizeof(kColumns[0]);
+// Longest task, vehicle or system name in a row (terrain::TaskLimits::kMaxNameLength).
+constexpr size_t kMaxNameLength = 128;
 
 std::string Num(double x) { return std::isfinite(x) ? FormatExact(x) : std::string(); }
 
@@ -79,14 +85,18 @@ std::vector<Record> SplitCsv(const std::string& text, const std::string& source)
   return records;
 }
 
+// An empty field is "no value" (NaN); otherwise a finite number >= 0 (every number of the index
+// is a time, a distance, a mean of absolute angles or a scale): the writer prints nothing else,
+// so "nan", "inf" or "-3" mean an edited or corrupt index, which would silently skew the report.
 double ParseDouble(const std::string& s, const std::string& source, int line, const char* key) {
   if (s.empty()) return std::numeric_limits<double>::quiet_NaN();
   char* end = nullptr;
   errno = 0;
   const double v = std::strtod(s.c_str(), &end);
-  if (*end != '\0' || errno != 0) {
-    throw InputError(source, line, key, "'" + s + "' is not a number");
+  if (*end != '\0' || errno != 0 || !std::isfinite(v)) {
+    throw InputError(source, line, key, "'" + s + "' is not a finite number");
   }
+  if (v < 0.0) throw InputError(source, line, key, "'" + s + "' is negative");
   return v;
 }
 
@@ -137,17 +147,28 @@ std::vector<TrialRow> ParseIndexCsv(const std::string& text, const std::string& 
   const std::vector<Record> records = SplitCsv(text, source);
   if (records.empty()) throw InputError(source, 1, "", "empty index (no header)");
   const Record& header = records.front();
-  if (header.fields.size() != kNumColumns) {
-    throw InputError(source, 1, "", "header has " + std::to_string(header.fields.size()) +
-                                        " columns, expected " + std::to_string(kNumColumns));
-  }
   for (size_t i = 0; i < kNumColumns; ++i) {
+    if (i >= header.fields.size()) {
+      throw InputError(source, 1, kColumns[i], "missing column (the header ends before it)");
+    }
     if (header.fields[i] != kColumns[i]) {
-      throw InputError(source, 1, header.fields[i],
-                       std::string("unexpected column; expected '") + kColumns[i] + "'");
+      const bool present = std::find(header.fields.begin(), header.fields.end(), kColumns[i]) !=
+                           header.fields.end();
+      throw InputError(source, 1, kColumns[i],
+                       present ? "column out of place: found '" + header.fields[i] +
+                                     "' where it belongs"
+                               : "missing column (found '" + header.fields[i] +
+                                     "' where it belongs)");
     }
   }
+  if (header.fields.size() != kNumColumns) {
+    throw InputError(source, 1, header.fields[kNumColumns],
+                     "unexpected extra column (the header has " +
+                         std::to_string(header.fields.size()) + " columns, expected " +
+                         std::to_string(kNumColumns) + ")");
+  }
   std::vector<TrialRow> rows;
+  std::map<std::string, int> first_line;   // trial stem -> line of its row
   for (size_t i = 1; i < records.size(); ++i) {
     const Record& rec = records[i];
     if (rec.fields.size() == 1 && rec.fields[0].empty()) continue;  // blank line
@@ -185,6 +206,20 @@ std::vector<TrialRow> ParseIndexCsv(const std::string& text, const std::string& 
     r.wall_time_s = ParseDouble(f[20], source, ln, "wall_time_s");
     r.task_file = f[21];
     r.message = f[22];
+    // The names become file names (trials/<stem>.json, report/topdown/<stem>.png): an edited
+    // index must not send vb_report or a merge outside its directories.
+    const std::pair<const char*, const std::string*> names[] = {
+        {"task", &r.task}, {"vehicle", &r.vehicle}, {"system", &r.system}};
+    for (const auto& [key, value] : names) {
+      const std::string problem = FileNameComponentProblem(*value, kMaxNameLength);
+      if (!problem.empty()) throw InputError(source, ln, key, "'" + *value + "': " + problem);
+    }
+    // One row per trial: a duplicated row would be counted twice in every statistic.
+    const auto [it, inserted] = first_line.emplace(RowStem(r), ln);
+    if (!inserted) {
+      throw InputError(source, ln, "", "trial " + it->first + " is listed twice (first at line " +
+                                           std::to_string(it->second) + ")");
+    }
     rows.push_back(std::move(r));
   }
   return rows;

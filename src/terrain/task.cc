@@ -2,6 +2,8 @@
 
 #include <array>
 
+#include "vb/engine/file_name.h"
+
 namespace vb::terrain {
 
 std::string_view ElevationLevelName(ElevationLevel v) {
@@ -39,6 +41,10 @@ std::vector<SurfaceClass> ClassesPresent(const PatchGrid& patches) {
     if (seen[static_cast<size_t>(k)]) out.push_back(static_cast<SurfaceClass>(k));
   }
   return out;
+}
+
+std::string TaskNameProblem(const std::string& name) {
+  return FileNameComponentProblem(name, TaskLimits::kMaxNameLength);
 }
 
 }  // namespace vb::terrain

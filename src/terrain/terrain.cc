@@ -20,8 +20,12 @@ struct CellCoords {
 inline CellCoords Locate(const HeightGrid& g, double half_x, double half_y, double dx, double dy,
                          double x_m, double y_m) {
   // clamp to the grid first, so points outside read the border (continuous extension)
-  const double u = std::min(std::max((x_m + half_x) / dx, 0.0), static_cast<double>(g.cols - 1));
-  const double v = std::min(std::max((half_y - y_m) / dy, 0.0), static_cast<double>(g.rows - 1));
+  double u = std::min(std::max((x_m + half_x) / dx, 0.0), static_cast<double>(g.cols - 1));
+  double v = std::min(std::max((half_y - y_m) / dy, 0.0), static_cast<double>(g.rows - 1));
+  // NaN passes both clamps, and casting it to int is undefined (it read out of bounds): a
+  // non-finite query reads the north-west vertex instead; the caller's state check reports it.
+  if (std::isnan(u)) u = 0.0;
+  if (std::isnan(v)) v = 0.0;
   // the last row/column belongs to the cell before it (fu or fv = 1 there)
   const int c = std::min(static_cast<int>(u), g.cols - 2);
   const int r = std::min(static_cast<int>(v), g.rows - 2);

@@ -237,7 +237,8 @@ Vehicle::Vehicle(const VehicleParams& params, const terrain::Terrain& terrain, c
     for (const AxleParams& axle : params_.axles) {
       if (!axle.steered) continue;
       in_->rack_max_m = params_.steering.max_pinion_angle_rad * params_.steering.pinion_radius_m;
-      in_->left_steer_angle = SteerAngleTable(axle.suspension.hardpoints, in_->rack_max_m, 41);
+      in_->left_steer_angle = SteerAngleTable(axle.suspension.hardpoints, in_->rack_max_m,
+                                               kSteerAngleTableSamples);
       in_->rack_sign = in_->left_steer_angle(in_->rack_max_m) > 0.0 ? 1.0 : -1.0;
       break;
     }

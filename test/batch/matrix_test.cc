@@ -133,6 +133,7 @@ TEST(IndexTest, CsvRoundTripKeepsEveryFieldIncludingQuotesAndNaN) {
   r.message = "bad \"value\", see\nline 2";
   TrialRow s = r;
   s.matrix_index = 13;
+  s.pair = 4;   // another trial: an index lists each trial once
   s.status = "success";
   s.traversal_time_s = 30.125;
   const std::vector<TrialRow> back = ParseIndexCsv(IndexCsv({r, s}), "index.csv");
@@ -146,8 +147,16 @@ TEST(IndexTest, CsvRoundTripKeepsEveryFieldIncludingQuotesAndNaN) {
   EXPECT_EQ(back[1].traversal_time_s, 30.125);
 }
 
+TrialRow NamedRow() {
+  TrialRow r;
+  r.task = "env000";
+  r.vehicle = "hmmwv";
+  r.system = "pid";
+  return r;
+}
+
 TEST(IndexTest, MalformedIndexNamesFileAndLine) {
-  const std::string good = IndexCsv({TrialRow{}});
+  const std::string good = IndexCsv({NamedRow()});
   try {
     ParseIndexCsv("task,pair\n", "dir/index.csv");
     FAIL();
@@ -164,11 +173,50 @@ TEST(IndexTest, MalformedIndexNamesFileAndLine) {
     EXPECT_EQ(e.line(), 2);
     EXPECT_EQ(e.key(), "status");
   }
-  TrialRow ok;
+  TrialRow ok = NamedRow();
   ok.status = "timeout";
   std::string text = IndexCsv({ok});
   text.replace(text.find("\n") + 1, 1, "x");   // matrix_index "x"
   EXPECT_THROW(ParseIndexCsv(text, "i.csv"), InputError);
+}
+
+// DEF-9 and DEF-13 of the probe: an index is checked, not trusted, and says what is wrong.
+TEST(IndexTest, CorruptIndexIsRefusedWithItsLineAndColumn) {
+  TrialRow a = NamedRow();
+  a.status = "success";
+  a.traversal_time_s = 30.0;
+  TrialRow b = a;
+  b.pair = 1;
+  const std::string text = IndexCsv({a, b});
+  auto error = [](const std::string& csv) -> std::string {
+    try {
+      ParseIndexCsv(csv, "i.csv");
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "";
+  };
+  EXPECT_EQ(error(text), "");
+  const std::string row = text.substr(text.find('\n') + 1, text.find('\n', text.find('\n') + 1) -
+                                                             text.find('\n'));
+  EXPECT_NE(error(text + row).find("i.csv:4: trial env000_p0_s0_hmmwv_pid is listed twice (first "
+                                   "at line 2)"),
+            std::string::npos)
+      << error(text + row);
+  std::string nan = text;
+  nan.replace(nan.find(",30,"), 4, ",nan,");
+  EXPECT_NE(error(nan).find("key 'traversal_time_s': 'nan' is not a finite number"),
+            std::string::npos);
+  std::string negative = text;
+  negative.replace(negative.find(",30,"), 4, ",-30,");
+  EXPECT_NE(error(negative).find("'-30' is negative"), std::string::npos);
+  std::string no_host = text;
+  no_host.replace(no_host.find(",host"), 5, "");
+  EXPECT_NE(error(no_host).find("i.csv:1: key 'host': missing column"), std::string::npos)
+      << error(no_host);
+  std::string path = text;
+  path.replace(path.find(",env000,"), 8, ",../x,");
+  EXPECT_NE(error(path).find("key 'task': '../x': name may contain only"), std::string::npos);
 }
 
 TEST(IndexTest, StableFieldsIgnoreHostWallTimeAndTaskPath) {

@@ -231,9 +231,12 @@ TEST_F(VbBatchTest, ShardedAndMergedGivesTheSameReport) {
   std::ofstream(root_ / "shard0x/index.csv", std::ios::trunc) << index;
   const Outcome conflict = Sh(kReport + " merge " + (root_ / "conflict").string() + " " +
                               (root_ / "shard0").string() + " " + (root_ / "shard0x").string());
+  // The index no longer matches the record it was built from: refused before anything is
+  // compared or copied (DEF-10: the records are the truth).
   EXPECT_EQ(conflict.exit_code, 2) << conflict.output;
-  EXPECT_NE(conflict.output.find("hold different results"), std::string::npos)
+  EXPECT_NE(conflict.output.find("disagrees with its row"), std::string::npos)
       << conflict.output;
+  EXPECT_FALSE(fs::exists(root_ / "conflict/index.csv"));
   // A shard of another matrix (only the deformable task: error trials, instant).
   ASSERT_EQ(Sh(kBatch + " " VB_SOURCE_DIR "/tasks/env061.yaml --pairs 0,1 --time-limit 32 "
                "--traj-every 20 --out " + (root_ / "othermatrix").string()).exit_code, 0);
@@ -337,7 +340,7 @@ TEST(VbBatchCliTest, BadInputExitsTwoNamingTheCulprit) {
       {"/nonexistent/task.yaml --out /tmp/x", "/nonexistent/task.yaml"},
       {"'/nonexistent/*.yaml' --out /tmp/x", "glob matches no files"},
       {task, "--out"},
-      {task + " --out /tmp/x --scale 0.1", "no task files matched"},
+      {task + " --out /tmp/x --scale 0.1", "key '--scale': no task has world scale 0.1"},
   };
   for (const Case& c : cases) {
     const Outcome o = Sh(kBatch + " " + c.args);

@@ -328,12 +328,45 @@ TEST_F(TaskIoTest, SavedStringsRoundTrip) {
   fs::create_directories(Path("sub"));
   WriteHeightImage(MakeGrid(2, 2, 0.5, 2.5), 0.5, 2.5, Path("sub/w.png"));
   task.height_image = "./sub/w.png";
-  for (const std::string name : {"yes", "a b: c", "1e5", "-x", "quote\"back\\slash", "[x]"}) {
+  for (const std::string name : {"yes", "1e5", "null", "007", "a.b-c_d"}) {
     task.name = name;
     SaveTask(task, Path("saved.yaml"));
     EXPECT_EQ(LoadTask(Path("saved.yaml")).name, name);
   }
   EXPECT_EQ(LoadTask(Path("saved.yaml")).height_image, "./sub/w.png");
+  // A name the loader refuses (it would become a path, DEF-3) is refused on save: no file.
+  for (const std::string name : {"a b: c", "-x", "../x", "quote\"back\\slash", "[x]"}) {
+    task.name = name;
+    EXPECT_THROW(SaveTask(task, Path("bad.yaml")), InputError) << name;
+    EXPECT_FALSE(fs::exists(Path("bad.yaml"))) << name;
+  }
+}
+
+// DEF-1, DEF-3, DEF-11 and DEF-14 of the probe: bounds where a task is loaded.
+TEST_F(TaskIoTest, ErrorBoundsOfScalesSizesNamesAndStrings) {
+  ExpectError(Edit("scale: 1.0", "  scale: 1e308"), 7, "world.scale", "must be in [0.001, 1000.0]");
+  ExpectError(Edit("scale: 1.0", "  scale: 0.0009"), 7, "world.scale", "must be in [0.001");
+  ExpectError(Edit("- {x: 1.0, y: -1.5", "    - {x: 1.0, y: -1.5, scale: 1e308}"), 21,
+              "obstacles.rocks[0].scale", "must be at most 100.0");
+  // 4.4 m x 1.0 is wider than this 4 m world.
+  ExpectError(Edit("- {x: 1.0, y: -1.5", "    - {x: 1.0, y: -1.5, scale: 1.0}"), 21,
+              "obstacles.rocks[0].scale", "must fit in the world (4.0 m)");
+  ExpectError(Edit("size_m:", "  size_m: [4.0, 1e6]"), 6, "world.size_m[1]", "at most 1e+05 m");
+  ExpectError(Edit("height_range_m", "  height_range_m: [-1e308, 1e308]"), 9,
+              "world.height_range_m", "not a finite number");
+  ExpectError(Edit("name: tiny", "name: ../../pwn"), 3, "name", "may contain only letters");
+  ExpectError(Edit("name: tiny", "name: .hidden"), 3, "name", "must not start with '.'");
+  ExpectError(Edit("height_image", "  height_image: \"tiny.png\\0junk\""), 8,
+              "world.height_image", "string contains a NUL");
+}
+
+// A subnormal number is a valid double (FormatDouble writes them): read, not refused (DEF-11).
+TEST_F(TaskIoTest, SubnormalNumbersLoad) {
+  const TaskSpec task =
+      LoadTask(WriteText("t.yaml", Edit("height_range_m", "  height_range_m: [1e-320, 2.5]")));
+  EXPECT_EQ(task.min_height_m, 1e-320);
+  ExpectError(Edit("height_range_m", "  height_range_m: [1e-400, 2.5]"), 9,
+              "world.height_range_m[0]", "expected a number");
 }
 
 TEST_F(TaskIoTest, HeightImageQuantisation) {
@@ -471,7 +504,8 @@ TEST_F(TaskIoTest, ErrorMissingTaskFile) {
     FAIL() << "no error";
   } catch (const InputError& e) {
     EXPECT_EQ(e.file(), Path("absent.yaml"));
-    EXPECT_NE(std::string(e.what()).find("cannot open"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("absent.yaml: does not exist"), std::string::npos)
+        << e.what();
   }
 }
 

@@ -293,5 +293,21 @@ TEST_F(VehicleIoTest, LoadsShippedHmmwv) {
   EXPECT_NE(std::find(names.begin(), names.end(), "hmmwv"), names.end());
 }
 
+// DEF-8 of the probe: a pinion angle below pi/2 whose rack travel the HMMWV's linkage cannot
+// follow is bad input at its key, not an internal error when the vehicle is built.
+TEST_F(VehicleIoTest, ErrorSteeringTravelTheLinkageCannotFollow) {
+  std::ifstream in(VB_SOURCE_DIR "/data/vehicles/hmmwv.yaml", std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  std::string text = ss.str();
+  const std::string from = "max_pinion_angle_rad: 0.5235988";
+  const size_t at = text.find(from);
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, from.size(), "max_pinion_angle_rad: 1.5707");
+  const std::string file = WriteText("wide.yaml", text);
+  test::ExpectInputError([&] { LoadVehicle(file); }, file, 120, "steering.max_pinion_angle_rad",
+                         "the steering linkage does not assemble");
+}
+
 }  // namespace
 }  // namespace vb::io

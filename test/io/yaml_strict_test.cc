@@ -55,13 +55,14 @@ TEST(WriteFileAtomicTest, ReplacesContentsAndLeavesNoTemporaries) {
   EXPECT_EQ(read.str(), "second\n");
   EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
 
-  // A directory that does not exist: an InputError naming the target path.
+  // A directory that does not exist: an IoError (the system's failure, not bad input; DEF-2)
+  // naming the target path.
   const std::string bad = (dir / "missing" / "out.txt").string();
   try {
     WriteFileAtomic(bad, "x");
     ADD_FAILURE() << "no error";
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.file(), bad);
+  } catch (const IoError& e) {
+    EXPECT_EQ(e.path(), bad);
   }
   fs::remove_all(dir);
 }

@@ -309,6 +309,19 @@ TEST(EpisodeApiTest, BadRulesAreInputErrors) {
   r = EpisodeRules();
   r.trajectory_every_n_steps = -1;
   EXPECT_EQ(key_of(r), "trajectory_every_n_steps");
+  // DEF-4 of the probe: one simulated hour at most, and never more than 10^6 trajectory samples
+  // (an hour at every step is 720000; with a 1 ms step it would be 3.6e6).
+  r = EpisodeRules();
+  r.time_limit_s = 3600.5;
+  EXPECT_EQ(key_of(r), "time_limit_s");
+  r = EpisodeRules();
+  r.time_limit_s = 3600.0;
+  EXPECT_EQ(key_of(r), "");
+  r.step_s = 0.001;
+  r.control_period_s = 0.001;
+  EXPECT_EQ(key_of(r), "trajectory_every_n_steps");
+  r.trajectory_every_n_steps = 4;
+  EXPECT_EQ(key_of(r), "");
 }
 
 TEST(EpisodeApiTest, NoTrajectoryWhenAskedForNone) {

@@ -54,6 +54,17 @@ TEST(ResultIoTest, JsonStringEscapesPerRfc8259) {
   EXPECT_EQ(JsonString("\n\r\t\b\f"), "\"\\n\\r\\t\\b\\f\"");
   EXPECT_EQ(JsonString(std::string("\x01\x1f", 2)), "\"\\u0001\\u001f\"");
   EXPECT_EQ(JsonString("h\xc3\xa9"), "\"h\xc3\xa9\"");  // UTF-8 unchanged
+  EXPECT_EQ(JsonString("\xf0\x9f\x9a\x99"), "\"\xf0\x9f\x9a\x99\"");  // 4 bytes: unchanged
+}
+
+// DEF-7 of the probe: bytes that are not UTF-8 (a Latin-1 name, a cut sequence, an overlong
+// form, a surrogate) become \ufffd, so every record is valid JSON.
+TEST(ResultIoTest, JsonStringReplacesInvalidUtf8) {
+  EXPECT_EQ(JsonString("env\xff" "42"), "\"env\\ufffd42\"");
+  EXPECT_EQ(JsonString("caf\xe9"), "\"caf\\ufffd\"");
+  EXPECT_EQ(JsonString("\xc3"), "\"\\ufffd\"");                 // cut 2-byte sequence
+  EXPECT_EQ(JsonString("\xc0\xaf"), "\"\\ufffd\\ufffd\"");      // overlong '/'
+  EXPECT_EQ(JsonString("\xed\xa0\x80"), "\"\\ufffd\\ufffd\\ufffd\"");  // surrogate
 }
 
 TEST(ResultIoTest, JsonNumbersRoundTripAndNonFiniteIsNull) {
@@ -138,9 +149,9 @@ TEST_F(ResultFilesTest, SummaryCsvQuotesMessages) {
   EXPECT_NE(csv.find("env007,3,18446744073709551615,hmmwv,pid,stuck,,12.5,"), std::string::npos);
 }
 
-TEST_F(ResultFilesTest, UnwritablePathIsAnInputErrorAndLeavesNoTemporary) {
+TEST_F(ResultFilesTest, UnwritablePathIsAnIoErrorAndLeavesNoTemporary) {
   const fs::path path = dir_ / "missing_dir" / "r.csv";
-  EXPECT_THROW(WriteTrajectoryCsv(SampleResult(), path.string()), InputError);
+  EXPECT_THROW(WriteTrajectoryCsv(SampleResult(), path.string()), IoError);
   // Overwriting keeps the directory clean: only the final file exists.
   WriteTrajectoryCsv(SampleResult(), (dir_ / "a.csv").string());
   WriteTrajectoryCsv(SampleResult(), (dir_ / "a.csv").string());

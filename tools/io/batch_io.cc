@@ -25,6 +25,11 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 YAML::Node Need(const YAML::Node& parent, const std::string& key, const std::string& path) {
+  // operator[] on a scalar or list throws YAML::BadSubscript, which is not an InputError (found by
+  // fuzzing, fuzz/corpus/*/fuzz_*_not_an_object*): say what is wrong instead.
+  if (!parent.IsMap()) {
+    throw InputError(path, parent.Mark().line + 1, key, "expected a JSON object holding it");
+  }
   const YAML::Node n = parent[key];
   if (!n.IsDefined()) throw InputError(path, 0, key, "missing in trial record");
   return n;
@@ -50,6 +55,9 @@ double NumOrNaN(const YAML::Node& parent, const std::string& key, const std::str
 
 batch::TrialRow ReadTrialJson(const std::string& path) {
   YAML::Node root;
+  // A directory, FIFO or /dev/zero would block or be read forever.
+  const std::string problem = InputFileProblem(path, kMaxYamlFileBytes);
+  if (!problem.empty()) throw InputError(path, 0, "", problem);
   try {
     root = YAML::LoadFile(path);
   } catch (const YAML::BadFile&) {
@@ -77,6 +85,13 @@ batch::TrialRow ReadTrialJson(const std::string& path) {
   r.mean_abs_roll_deg = roll.IsNull() ? kNaN : NumOrNaN(roll, "mean", path);
   r.mean_abs_pitch_deg = pitch.IsNull() ? kNaN : NumOrNaN(pitch, "mean", path);
   r.wall_time_s = NumOrNaN(root, "wall_time_s", path);
+  const YAML::Node samples = root["trajectory_samples"];
+  if (samples.IsDefined() && !samples.IsNull()) {
+    r.trajectory_samples = As<long>(root, "trajectory_samples", path);
+    if (r.trajectory_samples < 0) {
+      throw InputError(path, 0, "trajectory_samples", "negative in trial record");
+    }
+  }
   const YAML::Node prov = Need(root, "provenance", path);
   r.vb_version = As<std::string>(prov, "vb_version", path);
   r.git_commit = As<std::string>(prov, "git_commit", path);
@@ -84,6 +99,43 @@ batch::TrialRow ReadTrialJson(const std::string& path) {
   r.task_fnv1a64 = As<std::string>(prov, "task_fnv1a64", path);
   r.host = As<std::string>(prov, "host", path);
   return r;
+}
+
+std::string TrajectoryProblem(const std::string& traj_path, const batch::TrialRow& record) {
+  if (record.trajectory_samples < 0) return "";   // error/crashed: no trajectory expected
+  std::ifstream in(traj_path, std::ios::binary);
+  if (!in) return "trajectory " + traj_path + " is missing";
+  // Rows are lines (no field of a trajectory holds a newline): count them in chunks.
+  long lines = 0;
+  char last = '\n';
+  std::vector<char> buf(1 << 16);
+  while (in) {
+    in.read(buf.data(), static_cast<std::streamsize>(buf.size()));
+    const std::streamsize n = in.gcount();
+    lines += std::count(buf.data(), buf.data() + n, '\n');
+    if (n > 0) last = buf[static_cast<size_t>(n) - 1];
+  }
+  const long rows = lines - 1;   // the header
+  if (last != '\n' || rows != record.trajectory_samples) {
+    return "trajectory " + traj_path + " has " + std::to_string(std::max(rows, 0L)) +
+           (last != '\n' ? " rows and a cut-off last line" : " rows") + ", its record says " +
+           std::to_string(record.trajectory_samples);
+  }
+  return "";
+}
+
+std::string RecordKeyProblem(const batch::TrialRow& record, const std::string& task, int pair,
+                             uint64_t seed, const std::string& vehicle,
+                             const std::string& system) {
+  batch::TrialRow expected;
+  expected.task = task;
+  expected.pair = pair;
+  expected.seed = seed;
+  expected.vehicle = vehicle;
+  expected.system = system;
+  if (batch::RowStem(record) == batch::RowStem(expected)) return "";
+  return "the record is of trial " + batch::RowStem(record) + ", not of " +
+         batch::RowStem(expected);
 }
 
 void WriteUnrunTrialJson(const std::string& path, const std::string& task_name, int pair,
@@ -131,6 +183,9 @@ void WriteBatchJson(const BatchInfo& b, const std::string& path) {
 
 BatchInfo ReadBatchJson(const std::string& path) {
   YAML::Node root;
+  // A directory, FIFO or /dev/zero would block or be read forever.
+  const std::string problem = InputFileProblem(path, kMaxYamlFileBytes);
+  if (!problem.empty()) throw InputError(path, 0, "", problem);
   try {
     root = YAML::LoadFile(path);
   } catch (const YAML::BadFile&) {

@@ -17,6 +17,16 @@ namespace vb::io {
 // file for an unreadable, truncated or malformed record.
 batch::TrialRow ReadTrialJson(const std::string& path);
 
+// Why the trajectory file of a trial does not match its record, or "" if it does: missing, or
+// not exactly record.trajectory_samples complete rows (a truncated or foreign file). Trials
+// without a runner result (trajectory_samples < 0) need none.
+std::string TrajectoryProblem(const std::string& traj_path, const batch::TrialRow& record);
+// Why a record does not belong to the trial of the given key, or "" if it does (a record copied
+// under another trial's file name).
+std::string RecordKeyProblem(const batch::TrialRow& record, const std::string& task, int pair,
+                             uint64_t seed, const std::string& vehicle,
+                             const std::string& system);
+
 // Writes the JSON record of a trial that did not produce a runner result: status "error" (could
 // not be set up) or "crashed" (worker died), with the reason in `message`; same layout as
 // WriteTrialJson, metrics null. Atomic.

@@ -9,6 +9,7 @@
 
 #include "vb/engine/error.h"
 #include "vb/terrain/scale.h"
+#include "vb/terrain/task.h"
 
 namespace vb::io {
 
@@ -20,7 +21,11 @@ bool ArgReader::Next() {
 
 std::string ArgReader::Value() {
   if (i_ + 1 >= argc_) throw InputError("", 0, arg_, "missing value");
-  return argv_[++i_];
+  std::string v = argv_[++i_];
+  // An empty value is never meant: `--out ""` would silently mean the default directory and
+  // `--pairs ""` every pair (usually an unset shell variable).
+  if (v.empty()) throw InputError("", 0, arg_, "empty value");
+  return v;
 }
 
 uint64_t ArgReader::U64Value(uint64_t lo, uint64_t hi) {
@@ -40,11 +45,32 @@ double ArgReader::NumberValue(bool positive) {
   return v;
 }
 
+double ArgReader::PositiveValueAtMost(double hi) {
+  const std::string flag = arg_;
+  const std::string text = Value();
+  const double v = ParseNonNegative(flag, text);
+  if (!(v > 0.0) || !(v <= hi)) {
+    char bound[32];
+    std::snprintf(bound, sizeof(bound), "%g", hi);
+    throw InputError("", 0, flag, "must be in (0, " + std::string(bound) + "], got '" + text + "'");
+  }
+  return v;
+}
+
 double ArgReader::ScaleValue() {
   const std::string flag = arg_;
   const std::string text = Value();
   const std::optional<double> f = terrain::ParseScaleFactor(text);
   if (!f) throw InputError("", 0, flag, "'" + text + "' is not a factor > 0 (e.g. 1/6, 0.1)");
+  // The task format's bounds on a world scale: a factor outside them can only make a task that
+  // does not load (or, before the bound existed, one with infinite or subnormal lengths).
+  using Limits = terrain::TaskLimits;
+  if (*f < Limits::kMinWorldScale || *f > Limits::kMaxWorldScale) {
+    char bounds[64];
+    std::snprintf(bounds, sizeof(bounds), "[%g, %g]", Limits::kMinWorldScale,
+                  Limits::kMaxWorldScale);
+    throw InputError("", 0, flag, "'" + text + "' is outside " + bounds);
+  }
   return *f;
 }
 
@@ -56,6 +82,10 @@ int ToolMain(const char* tool, const std::function<int()>& body) {
   } catch (const InputError& e) {
     std::fprintf(stderr, "%s: error: %s\n", tool, e.what());
     return 2;
+  } catch (const IoError& e) {
+    // Not the input's fault (disk full, read-only directory): exit 1, and say what failed.
+    std::fprintf(stderr, "%s: I/O error: %s\n", tool, e.what());
+    return 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s: internal error: %s\n", tool, e.what());
     return 1;

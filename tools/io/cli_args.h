@@ -27,12 +27,15 @@ class ArgReader {
   bool Is(const char* flag) const { return arg_ == flag; }
   bool IsFlag() const { return !arg_.empty() && arg_[0] == '-'; }
 
-  // The current flag's value (the next argument); "missing value" when there is none.
+  // The current flag's value (the next argument); "missing value" when there is none, "empty
+  // value" when it is "".
   std::string Value();
   // Whole number in [lo, hi].
   uint64_t U64Value(uint64_t lo = 0, uint64_t hi = UINT64_MAX);
   // Finite number >= 0 (> 0 when positive is set).
   double NumberValue(bool positive = false);
+  // Finite number in (0, hi]; the message names the flag, the bound and the value.
+  double PositiveValueAtMost(double hi);
   // A world scale factor: "1/6", "1/10", "0.5", "1" (> 0).
   double ScaleValue();
   // Rejects the current argument as an unknown option.
@@ -46,8 +49,9 @@ class ArgReader {
 };
 
 // The exit-code convention of every vb tool around its body: the body's own code, 2 for bad
-// input (InputError, printed as "<tool>: error: <file:line: key: message>"), 1 for anything
-// else ("<tool>: internal error: ..."). Never lets an exception escape.
+// input (InputError, printed as "<tool>: error: <file:line: key: message>"), 1 for a failed
+// write (IoError, "<tool>: I/O error: <path>: <reason>") and for anything else
+// ("<tool>: internal error: ..."). Never lets an exception escape.
 int ToolMain(const char* tool, const std::function<int()>& body);
 // Prints a usage text to stdout; returns 0 (for `return PrintUsage(kUsage);`).
 int PrintUsage(const char* usage);

@@ -1,5 +1,6 @@
 #include "io/original_io.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -61,14 +62,35 @@ ObstacleDensity ReadDensity(const StrictNode& node) {
   node.Fail("unknown obstacle_density '" + s + "' (valid: sparse, medium, dense)");
 }
 
-terrain::OriginalObstacle ReadObstacle(const StrictNode& item, bool rock) {
+// Fails unless (x, y) lies in the task's world of half sizes (hx, hy): the task written would
+// refuse it.
+void CheckInWorld(const StrictNode& node, double x, double y, double hx, double hy) {
+  if (std::abs(x) > hx || std::abs(y) > hy) {
+    node.Fail("point (" + Fmt(x) + ", " + Fmt(y) + ") is outside the world [" + Fmt(-hx) + ", " +
+              Fmt(hx) + "] x [" + Fmt(-hy) + ", " + Fmt(hy) + "]");
+  }
+}
+
+terrain::OriginalObstacle ReadObstacle(const StrictNode& item, bool rock, double hx, double hy) {
   const StrictMap m = rock ? item.AsMap({"position", "scale"}) : item.AsMap({"position"});
-  const StrictMap p = m.Required("position").AsMap({"x", "y", "z"});
+  const StrictNode position = m.Required("position");
+  const StrictMap p = position.AsMap({"x", "y", "z"});
   terrain::OriginalObstacle o;
   o.x_m = p.Required("x").AsDouble();
   o.y_m = p.Required("y").AsDouble();
   o.z_m = p.Required("z").AsDouble();
-  o.scale = rock ? m.Required("scale").AsPositive() : 1.0;
+  CheckInWorld(position, o.x_m, o.y_m, hx, hy);
+  if (rock) {
+    // The task format's bound (task.h TaskLimits): refused here, at the config's line.
+    const StrictNode scale = m.Required("scale");
+    o.scale = scale.AsPositive();
+    const double side_m = terrain::kRockSideAtScale1_m * o.scale;
+    if (o.scale > terrain::TaskLimits::kMaxRockScale || side_m > 2.0 * std::min(hx, hy)) {
+      scale.Fail("rock scale " + Fmt(o.scale) + " out of range: at most " +
+                 Fmt(terrain::TaskLimits::kMaxRockScale) + ", and the rock's " + Fmt(side_m) +
+                 " m box must fit in the world");
+    }
+  }
   return o;
 }
 
@@ -164,17 +186,27 @@ OriginalConfig ReadConfig(const std::string& path, std::optional<StrictNode>* le
   c.obstacles_flag = top.Required("obstacles_flag").AsBool();
   c.density = ReadDensity(top.Required("obstacle_density"));
   const StrictMap obstacles = top.Required("obstacles").AsMap({"rocks", "trees"});
-  for (const StrictNode& item : obstacles.Required("rocks").AsList()) {
-    c.rocks.push_back(ReadObstacle(item, true));
+  const std::vector<StrictNode> rocks = obstacles.Required("rocks").AsList();
+  const std::vector<StrictNode> trees = obstacles.Required("trees").AsList();
+  if (rocks.size() + trees.size() > terrain::TaskLimits::kMaxObstacles) {
+    top.Required("obstacles").Fail("more than " +
+                                   std::to_string(terrain::TaskLimits::kMaxObstacles) +
+                                   " obstacles");
   }
-  for (const StrictNode& item : obstacles.Required("trees").AsList()) {
-    c.trees.push_back(ReadObstacle(item, false));
-  }
+  // The task's world spans the image's vertices: (2 * half size - 1) m, i.e. |x| <= 64 m.
+  const double hx = c.half_length_m - 0.5;
+  const double hy = c.half_width_m - 0.5;
+  for (const StrictNode& item : rocks) c.rocks.push_back(ReadObstacle(item, true, hx, hy));
+  for (const StrictNode& item : trees) c.trees.push_back(ReadObstacle(item, false, hx, hy));
   for (const StrictNode& item : top.Required("positions").AsList(1)) {
     const StrictMap pair = item.AsMap({"start", "goal"});
     terrain::StartGoalPair p;
-    const Vec3 start = pair.Required("start").AsVec3();
-    const Vec3 goal = pair.Required("goal").AsVec3();
+    const StrictNode start_node = pair.Required("start");
+    const StrictNode goal_node = pair.Required("goal");
+    const Vec3 start = start_node.AsVec3();
+    const Vec3 goal = goal_node.AsVec3();
+    CheckInWorld(start_node, start.x(), start.y(), hx, hy);
+    CheckInWorld(goal_node, goal.x(), goal.y(), hx, hy);
     p.start_m = start.head<2>();
     p.goal_m = goal.head<2>();
     c.pairs.push_back(p);
@@ -204,9 +236,16 @@ uint32_t ReadLe(const std::string& bytes, size_t offset, int n) {
 }  // namespace
 
 terrain::GrayImage ReadGrayImage(const std::string& path) {
-  std::ifstream probe(path, std::ios::binary);
-  if (!probe) throw InputError(path, 0, "", "cannot open image file");
-  const cv::Mat image = cv::imread(path, cv::IMREAD_UNCHANGED);
+  // Original worlds are 129 x 129 bytes: 64 MiB is far above any real one, and a directory,
+  // FIFO or /dev/zero is refused before OpenCV blocks on it or reads it forever.
+  const std::string problem = InputFileProblem(path, kMaxYamlFileBytes);
+  if (!problem.empty()) throw InputError(path, 0, "", problem);
+  cv::Mat image;
+  try {
+    image = cv::imread(path, cv::IMREAD_UNCHANGED);
+  } catch (const cv::Exception& e) {   // OpenCV's own size and format assertions
+    throw InputError(path, 0, "", "cannot be read as an image: " + e.err);
+  }
   if (image.empty()) throw InputError(path, 0, "", "cannot be read as an image");
   if (image.channels() != 1 || image.depth() != CV_8U) {
     throw InputError(path, 0, "",
@@ -238,6 +277,9 @@ void WriteGrayImage(const terrain::GrayImage& image, const std::string& path) {
 }
 
 std::vector<int32_t> ReadNpyInt32(const std::string& path, int* rows, int* cols) {
+  // A label grid is 129 x 129 int32 (66 kB); /dev/zero or /dev/urandom would be read forever.
+  const std::string problem = InputFileProblem(path, kMaxYamlFileBytes);
+  if (!problem.empty()) throw InputError(path, 0, "", problem);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, 0, "", "cannot open .npy file");
   std::stringstream ss;
@@ -275,7 +317,8 @@ std::vector<int32_t> ReadNpyInt32(const std::string& path, int* rows, int* cols)
   }
   const size_t data_start = header_start + header_len;
   const size_t count = static_cast<size_t>(r) * c;
-  if (bytes.size() != data_start + 4 * count) {
+  // Compared by division: 4 * count can wrap for a header claiming a huge shape.
+  if ((bytes.size() - data_start) % 4 != 0 || (bytes.size() - data_start) / 4 != count) {
     fail("data size " + std::to_string(bytes.size() - data_start) +
          " bytes does not match shape (" + std::to_string(r) + ", " + std::to_string(c) + ")");
   }

@@ -29,7 +29,7 @@ void WriteAtomically(const std::string& path, const std::string& text) {
   const std::string tmp = path + ".tmp." + std::to_string(::getpid());
   std::FILE* f = std::fopen(tmp.c_str(), "wb");
   if (f == nullptr) {
-    throw InputError(path, 0, "", std::string("cannot write: ") + std::strerror(errno));
+    throw IoError(path, std::string("cannot write: ") + std::strerror(errno));
   }
   const bool written = std::fwrite(text.data(), 1, text.size(), f) == text.size();
   const bool flushed = std::fflush(f) == 0 && ::fsync(::fileno(f)) == 0;
@@ -38,7 +38,7 @@ void WriteAtomically(const std::string& path, const std::string& text) {
   if (!written || !flushed || std::rename(tmp.c_str(), path.c_str()) != 0) {
     const int err = written && flushed ? errno : saved_errno;
     std::remove(tmp.c_str());
-    throw InputError(path, 0, "", std::string("cannot write: ") + std::strerror(err));
+    throw IoError(path, std::string("cannot write: ") + std::strerror(err));
   }
 }
 
@@ -83,9 +83,53 @@ class JsonObject {
 
 }  // namespace
 
+namespace {
+
+// Length of the well-formed UTF-8 sequence starting at s[i] (RFC 3629: no overlongs, no
+// surrogates, at most U+10FFFF), or 0 if the bytes there are not one.
+size_t Utf8SequenceLength(const std::string& s, size_t i) {
+  const auto byte = [&](size_t k) { return static_cast<unsigned char>(s[k]); };
+  const unsigned char c = byte(i);
+  size_t n = 0;
+  unsigned char lo = 0x80, hi = 0xBF;   // allowed range of the second byte
+  if (c >= 0xC2 && c <= 0xDF) {
+    n = 2;
+  } else if (c >= 0xE0 && c <= 0xEF) {
+    n = 3;
+    if (c == 0xE0) lo = 0xA0;
+    if (c == 0xED) hi = 0x9F;
+  } else if (c >= 0xF0 && c <= 0xF4) {
+    n = 4;
+    if (c == 0xF0) lo = 0x90;
+    if (c == 0xF4) hi = 0x8F;
+  } else {
+    return 0;
+  }
+  if (i + n > s.size() || byte(i + 1) < lo || byte(i + 1) > hi) return 0;
+  for (size_t k = 2; k < n; ++k) {
+    if (byte(i + k) < 0x80 || byte(i + k) > 0xBF) return 0;
+  }
+  return n;
+}
+
+}  // namespace
+
 std::string JsonString(const std::string& s) {
   std::string out = "\"";
-  for (unsigned char c : s) {
+  for (size_t i = 0; i < s.size(); ++i) {
+    const unsigned char c = static_cast<unsigned char>(s[i]);
+    if (c >= 0x80) {
+      // JSON text is UTF-8 (RFC 8259 §8.1): a byte that is not part of a well-formed sequence
+      // (a Latin-1 file name, say) becomes U+FFFD so the record stays readable (DEF-7).
+      const size_t n = Utf8SequenceLength(s, i);
+      if (n == 0) {
+        out += "\\ufffd";
+      } else {
+        out.append(s, i, n);
+        i += n - 1;
+      }
+      continue;
+    }
     switch (c) {
       case '"': out += "\\\""; break;
       case '\\': out += "\\\\"; break;
@@ -100,7 +144,7 @@ std::string JsonString(const std::string& s) {
           std::snprintf(buf, sizeof(buf), "\\u%04x", c);
           out += buf;
         } else {
-          out += static_cast<char>(c);  // UTF-8 passes through unchanged
+          out += static_cast<char>(c);
         }
     }
   }

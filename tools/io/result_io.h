@@ -50,7 +50,7 @@ std::string FileFnv1a64Hex(const std::string& path);
 // Standard file names of a trial's outputs: <task>_p<K>_s<seed>_<vehicle>_<system>.
 std::string TrialFileStem(const runner::TrialResult& result);
 
-// Writers. Each throws InputError naming the path if the file cannot be written.
+// Writers. Each throws IoError naming the path if the file cannot be written.
 void WriteTrialJson(const runner::TrialResult& result, const std::string& path,
                     const Provenance& provenance);
 // Columns: t_s, x_m, y_m, z_m, vx_mps, vy_mps, vz_mps, speed_mps, roll_deg, pitch_deg, yaw_deg,
@@ -58,7 +58,8 @@ void WriteTrialJson(const runner::TrialResult& result, const std::string& path,
 void WriteTrajectoryCsv(const runner::TrialResult& result, const std::string& path);
 void WriteSummaryCsv(const std::vector<runner::TrialResult>& results, const std::string& path);
 
-// JSON string literal of `s` (quotes included), escaping per RFC 8259.
+// JSON string literal of `s` (quotes included), escaping per RFC 8259; bytes that are not
+// well-formed UTF-8 become \ufffd, so the output is always valid JSON.
 std::string JsonString(const std::string& s);
 // JSON number of `x` with "%.17g"; non-finite values (not representable in JSON) become null.
 std::string JsonNumber(double x);

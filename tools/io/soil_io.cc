@@ -1,5 +1,8 @@
 #include "io/soil_io.h"
 
+#include <algorithm>
+#include <filesystem>
+
 #include <cmath>
 #include <string>
 
@@ -102,6 +105,20 @@ std::optional<soil::SoilConfig> LoadSoilIfNeeded(const terrain::TaskSpec& task,
     if (terrain::IsDeformable(c)) return LoadSoil(path);
   }
   return std::nullopt;
+}
+
+std::vector<std::string> SoilNames(const std::string& data_dir) {
+  namespace fs = std::filesystem;
+  std::vector<std::string> names;
+  std::error_code ec;
+  for (fs::directory_iterator it(fs::path(data_dir) / "soils", ec), end; !ec && it != end;
+       it.increment(ec)) {
+    if (it->path().extension() == ".yaml" && it->is_regular_file(ec)) {
+      names.push_back(it->path().stem().string());
+    }
+  }
+  std::sort(names.begin(), names.end());
+  return names;
 }
 
 }  // namespace vb::io

@@ -3,6 +3,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "vb/soil/soil_params.h"
 #include "vb/terrain/task.h"
@@ -15,6 +16,10 @@ soil::SoilConfig LoadSoil(const std::string& path);
 
 // The soil a task needs: LoadSoil(path) when the task has mud, sand or snow patches, nothing for
 // a rigid task (which then never reads the soil file).
+// Names of the soil sets in data_dir/soils (file stems of *.yaml), sorted: --soil must be one of
+// them, so a name can never reach outside that directory ("../x").
+std::vector<std::string> SoilNames(const std::string& data_dir);
+
 std::optional<soil::SoilConfig> LoadSoilIfNeeded(const terrain::TaskSpec& task,
                                                  const std::string& path);
 

@@ -5,6 +5,7 @@
 #include <cctype>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <optional>
 #include <string>
 #include <vector>
@@ -24,6 +25,7 @@ using terrain::ObstacleDensity;
 using terrain::SurfaceClass;
 using terrain::TaskSpec;
 using terrain::TerrainType;
+using Limits = terrain::TaskLimits;
 
 constexpr char kFormatName[] = "vb-task";
 // Friction above 2 is not a plausible Coulomb coefficient for any ground: a typo, not data.
@@ -73,12 +75,29 @@ StrictNode ReadWorld(const StrictNode& node, TaskSpec& task) {
   const std::vector<StrictNode> size = world.Required("size_m").AsList(2, 2);
   task.size_x_m = size[0].AsPositive();
   task.size_y_m = size[1].AsPositive();
-  task.scale = world.Required("scale").AsPositive();
+  for (const StrictNode& side : size) {
+    if (side.AsDouble() > Limits::kMaxWorldSize_m) {
+      side.Fail("must be at most " + FormatDouble(Limits::kMaxWorldSize_m) + " m, got " +
+                FormatDouble(side.AsDouble()));
+    }
+  }
+  // Bounded, not just > 0: every length of the world (obstacle boxes, planner inflation, goal
+  // radius) is a multiple of it, and a huge factor overflows them (DEF-1 of the probe).
+  const StrictNode scale = world.Required("scale");
+  task.scale = scale.AsPositive();
+  if (task.scale < Limits::kMinWorldScale || task.scale > Limits::kMaxWorldScale) {
+    scale.Fail("must be in [" + FormatDouble(Limits::kMinWorldScale) + ", " +
+               FormatDouble(Limits::kMaxWorldScale) + "], got " + FormatDouble(task.scale));
+  }
   const StrictNode range_node = world.Required("height_range_m");
   const Vec2 range = range_node.AsVec2();
   if (range[1] < range[0]) {
     range_node.Fail("max height " + FormatDouble(range[1]) + " is below min height " +
                     FormatDouble(range[0]));
+  }
+  if (!std::isfinite(range[1] - range[0])) {
+    range_node.Fail("the height span " + FormatDouble(range[0]) + " .. " +
+                    FormatDouble(range[1]) + " is not a finite number");
   }
   task.min_height_m = range[0];
   task.max_height_m = range[1];
@@ -88,18 +107,57 @@ StrictNode ReadWorld(const StrictNode& node, TaskSpec& task) {
   return image;
 }
 
+// A height image file's largest size: an 8192 x 8192 16-bit image stored raw, plus headers.
+constexpr uint64_t kMaxImageFileBytes = 160ull << 20;
+
+// Width and height from a PNG's IHDR chunk; false if the file is not a PNG (or is too short).
+bool PngHeaderSize(const std::string& path, int* cols, int* rows) {
+  std::ifstream in(path, std::ios::binary);
+  unsigned char b[24] = {};
+  if (!in.read(reinterpret_cast<char*>(b), sizeof(b))) return false;
+  static const unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  if (!std::equal(kSignature, kSignature + 8, b) || std::string(b + 12, b + 16) != "IHDR") {
+    return false;
+  }
+  auto be32 = [&](int at) {
+    return (uint32_t{b[at]} << 24) | (uint32_t{b[at + 1]} << 16) | (uint32_t{b[at + 2]} << 8) |
+           uint32_t{b[at + 3]};
+  };
+  // Clamped to int: PNG allows up to 2^31 - 1, anything above the limit is refused anyway.
+  *cols = static_cast<int>(std::min<uint32_t>(be32(16), 0x7fffffff));
+  *rows = static_cast<int>(std::min<uint32_t>(be32(20), 0x7fffffff));
+  return true;
+}
+
 // Decodes the height image: pixel (r, c) is vertex (r, c), h = min + p / pmax * (max - min).
 HeightGrid ReadHeights(const StrictNode& image_node, const TaskSpec& task) {
   namespace fs = std::filesystem;
   const fs::path task_dir = fs::path(task.source_file).parent_path();
   const std::string image_path = (task_dir / task.height_image).string();
-  std::error_code ec;
-  if (!fs::is_regular_file(image_path, ec)) {
-    image_node.Fail("height image '" + image_path + "' does not exist");
+  // A directory, FIFO or /dev/zero would be "does not exist", block, or never end.
+  const std::string problem = InputFileProblem(image_path, kMaxImageFileBytes);
+  if (!problem.empty()) image_node.Fail("height image '" + image_path + "' " + problem);
+  // A PNG header can claim any size; check it before the decoder allocates for it.
+  int header_cols = 0, header_rows = 0;
+  if (PngHeaderSize(image_path, &header_cols, &header_rows) &&
+      (header_cols > Limits::kMaxImageSide || header_rows > Limits::kMaxImageSide)) {
+    image_node.Fail("height image '" + image_path + "' is " + std::to_string(header_cols) + "x" +
+                    std::to_string(header_rows) + " pixels; at most " +
+                    std::to_string(Limits::kMaxImageSide) + " per side are supported");
   }
-  const cv::Mat image = cv::imread(image_path, cv::IMREAD_UNCHANGED);
+  cv::Mat image;
+  try {
+    image = cv::imread(image_path, cv::IMREAD_UNCHANGED);
+  } catch (const cv::Exception& e) {   // OpenCV's own size and format assertions
+    image_node.Fail("height image '" + image_path + "' cannot be read as an image: " + e.err);
+  }
   if (image.empty()) {
     image_node.Fail("height image '" + image_path + "' cannot be read as an image");
+  }
+  if (image.rows > Limits::kMaxImageSide || image.cols > Limits::kMaxImageSide) {
+    image_node.Fail("height image '" + image_path + "' is " + std::to_string(image.cols) + "x" +
+                    std::to_string(image.rows) + " pixels; at most " +
+                    std::to_string(Limits::kMaxImageSide) + " per side are supported");
   }
   if (image.channels() != 1 || (image.depth() != CV_8U && image.depth() != CV_16U)) {
     image_node.Fail("height image '" + image_path +
@@ -212,16 +270,37 @@ void ReadSemantics(const StrictNode& node, TaskSpec& task) {
 
 void ReadObstacles(const StrictNode& node, TaskSpec& task) {
   const StrictMap obstacles = node.AsMap({"rocks", "trees"});
-  for (const StrictNode& item : obstacles.Required("rocks").AsList()) {
+  // Each obstacle becomes a convex body with its own broadphase entry: a million trees is not a
+  // world but a setup that runs for hours.
+  const std::vector<StrictNode> rocks = obstacles.Required("rocks").AsList();
+  const std::vector<StrictNode> trees = obstacles.Required("trees").AsList();
+  if (rocks.size() + trees.size() > Limits::kMaxObstacles) {
+    node.Fail(std::to_string(rocks.size()) + " rocks and " + std::to_string(trees.size()) +
+              " trees; at most " + std::to_string(Limits::kMaxObstacles) +
+              " obstacles are supported");
+  }
+  const double smaller_side_m = std::min(task.size_x_m, task.size_y_m);
+  for (const StrictNode& item : rocks) {
     const StrictMap rock = item.AsMap({"x", "y", "scale"});
     terrain::RockSpec spec;
     spec.x_m = rock.Required("x").AsDouble();
     spec.y_m = rock.Required("y").AsDouble();
-    spec.scale = rock.Required("scale").AsPositive();
+    const StrictNode scale = rock.Required("scale");
+    spec.scale = scale.AsPositive();
+    // The box side is 4.4 m x scale x world scale: a rock wider than the world is a typo, and
+    // its footprint walk and cell counts would overflow (DEF-1).
+    const double side_m = terrain::kRockSideAtScale1_m * spec.scale * task.scale;
+    if (spec.scale > Limits::kMaxRockScale || side_m > smaller_side_m) {
+      scale.Fail("must be at most " + FormatDouble(Limits::kMaxRockScale) +
+                 " and the rock's box (" + FormatDouble(terrain::kRockSideAtScale1_m) +
+                 " m x scale x world scale = " + FormatDouble(side_m) +
+                 " m) must fit in the world (" + FormatDouble(smaller_side_m) + " m); got " +
+                 FormatDouble(spec.scale));
+    }
     CheckInWorld(item, task, spec.x_m, spec.y_m);
     task.rocks.push_back(spec);
   }
-  for (const StrictNode& item : obstacles.Required("trees").AsList()) {
+  for (const StrictNode& item : trees) {
     const StrictMap tree = item.AsMap({"x", "y"});
     terrain::TreeSpec spec;
     spec.x_m = tree.Required("x").AsDouble();
@@ -274,10 +353,7 @@ std::string Pair(double a, double b) {
   return "[" + FormatDouble(a) + ", " + FormatDouble(b) + "]";
 }
 
-}  // namespace
-
-terrain::TaskSpec LoadTask(const std::string& path) {
-  const StrictNode root = LoadYamlFile(path);
+terrain::TaskSpec LoadTaskFromRoot(const StrictNode& root, const std::string& path) {
   const StrictMap top = root.AsMap({"format", "version", "name", "generator_seed", "world",
                                     "labels", "semantics", "obstacles", "pairs"});
   // Format and version first: a file of another kind or version gets that message, not a
@@ -297,7 +373,9 @@ terrain::TaskSpec LoadTask(const std::string& path) {
   task.source_file = path;
   const StrictNode name = top.Required("name");
   task.name = name.AsString();
-  if (task.name.empty()) name.Fail("name is empty");
+  // The name becomes part of every output file name: checked here, where it enters.
+  const std::string name_problem = terrain::TaskNameProblem(task.name);
+  if (!name_problem.empty()) name.Fail(name_problem);
   task.generator_seed = top.Required("generator_seed").AsUint64();
   const StrictNode image = ReadWorld(top.Required("world"), task);
   const std::optional<StrictNode> classes_label = ReadLabels(top.Required("labels"), task);
@@ -308,6 +386,16 @@ terrain::TaskSpec LoadTask(const std::string& path) {
   // The image last: a task with a bad key fails fast without decoding a large image.
   task.heights = ReadHeights(image, task);
   return task;
+}
+
+}  // namespace
+
+terrain::TaskSpec LoadTask(const std::string& path) {
+  return LoadTaskFromRoot(LoadYamlFile(path), path);
+}
+
+terrain::TaskSpec LoadTaskText(const std::string& text, const std::string& path) {
+  return LoadTaskFromRoot(LoadYamlText(text, path), path);
 }
 
 void SaveTask(const terrain::TaskSpec& task, const std::string& path) {
@@ -377,6 +465,8 @@ void SaveTask(const terrain::TaskSpec& task, const std::string& path) {
     out += pair.path_m.empty() ? "    path: []\n" : "    path:\n";
     for (const Vec2& p : pair.path_m) out += "      - " + Pair(p.x(), p.y()) + "\n";
   }
+  // The round trip Save -> Load is a promise: check it before writing (DEF-11 of the probe).
+  LoadTaskText(out, path);
   WriteFileAtomic(path, out);
 }
 

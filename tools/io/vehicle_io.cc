@@ -9,6 +9,7 @@
 #include "io/yaml_strict.h"
 #include "vb/engine/convex_shape.h"
 #include "vb/engine/error.h"
+#include "vb/vehicles/suspension_kinematics.h"
 
 namespace vb::io {
 namespace {
@@ -373,6 +374,24 @@ vehicles::VehicleParams LoadVehicle(const std::string& path) {
             "rack_pinion steering needs double_wishbone suspension (tie-rod hard points) on "
             "every steered axle");
       }
+    }
+    // The rack's whole travel must assemble too (DEF-8 of the probe: a pinion angle just below
+    // pi/2 on the HMMWV pulls the tie rod past where the linkage closes). The same table the
+    // vehicle builds, so a vehicle that loads always builds.
+    const StrictMap steering = top.Required("steering").AsMap(
+        {"model", "max_pinion_angle_rad", "pinion_radius_m", "link_mass_kg", "link_position_B"});
+    const double rack_max_m = v.steering.max_pinion_angle_rad * v.steering.pinion_radius_m;
+    for (const AxleParams& axle : v.axles) {
+      if (!axle.steered) continue;
+      try {
+        vehicles::SteerAngleTable(axle.suspension.hardpoints, rack_max_m, vehicles::kSteerAngleTableSamples);
+      } catch (const std::runtime_error&) {
+        steering.Required("max_pinion_angle_rad")
+            .Fail("the steering linkage does not assemble over the rack travel of +-" +
+                  FormatDouble(rack_max_m) + " m (max_pinion_angle_rad x pinion_radius_m): "
+                  "reduce the angle");
+      }
+      break;   // all steered axles share the first one's tie-rod geometry (vehicle.cc)
     }
   }
   v.wheel = ReadWheel(top.Required("wheel"));

@@ -13,6 +13,8 @@
 #include <fstream>
 #include <sstream>
 
+#include <yaml-cpp/depthguard.h>
+
 #include "vb/engine/error.h"
 
 namespace vb::io {
@@ -84,7 +86,10 @@ double StrictNode::AsDouble() const {
   char* end = nullptr;
   errno = 0;
   const double v = chars_ok ? std::strtod(text.c_str(), &end) : 0.0;
-  if (!chars_ok || end != text.c_str() + text.size() || errno == ERANGE || !std::isfinite(v)) {
+  // ERANGE also flags a subnormal result (e.g. 1e-310): a valid double that FormatDouble writes,
+  // so only an underflow to zero or an overflow is refused.
+  const bool range_ok = errno != ERANGE || (v != 0.0 && std::isfinite(v));
+  if (!chars_ok || end != text.c_str() + text.size() || !range_ok || !std::isfinite(v)) {
     Fail("expected a number, got " + Quoted(text));
   }
   return v;
@@ -121,6 +126,8 @@ bool StrictNode::AsBool() const {
 
 std::string StrictNode::AsString() const {
   if (!node_.IsScalar()) Fail(std::string("expected a string, got ") + TypeName(node_));
+  // "\0" in a double-quoted scalar: every path or name would be cut short at it by the C APIs.
+  if (node_.Scalar().find('\0') != std::string::npos) Fail("string contains a NUL character");
   return node_.Scalar();
 }
 
@@ -202,16 +209,43 @@ StrictNode StrictMap::Required(const std::string& name) const {
   throw InputError(self_.file(), self_.line(), key_path, "missing required key " + Quoted(name));
 }
 
+std::string InputFileProblem(const std::string& path, uint64_t max_bytes) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) {
+    return errno == ENOENT ? "does not exist" : "cannot open file: " + std::string(std::strerror(errno));
+  }
+  if (S_ISDIR(st.st_mode)) return "is a directory, not a file";
+  if (!S_ISREG(st.st_mode)) {
+    return S_ISFIFO(st.st_mode) ? "is a FIFO, not a regular file"
+                                : "is a device or special file, not a regular file";
+  }
+  if (static_cast<uint64_t>(st.st_size) > max_bytes) {
+    return "is " + std::to_string(st.st_size) + " bytes, more than the " +
+           std::to_string(max_bytes) + " bytes accepted";
+  }
+  return "";
+}
+
 StrictNode LoadYamlFile(const std::string& file) {
+  const std::string problem = InputFileProblem(file, kMaxYamlFileBytes);
+  if (!problem.empty()) throw InputError(file, 0, "", problem);
   std::ifstream in(file, std::ios::binary);
   if (!in) throw InputError(file, 0, "", "cannot open file: " + std::string(std::strerror(errno)));
   std::stringstream text;
   text << in.rdbuf();
+  return LoadYamlText(text.str(), file);
+}
+
+StrictNode LoadYamlText(const std::string& text, const std::string& file) {
   YAML::Node root;
   try {
-    root = YAML::Load(text.str());
+    root = YAML::Load(text);
+  } catch (const YAML::DeepRecursion& e) {
+    throw InputError(file, LineOf(e.mark), "", "YAML nesting too deep (more than yaml-cpp's limit)");
   } catch (const YAML::Exception& e) {  // ParserException and any other marked failure
-    throw InputError(file, LineOf(e.mark), "", "YAML syntax error: " + e.msg);
+    // yaml-cpp says "bad file" for some malformed inputs it gives up on without a position.
+    const std::string what = e.msg == "bad file" ? "malformed YAML" : e.msg;
+    throw InputError(file, LineOf(e.mark), "", "YAML syntax error: " + what);
   }
   return StrictNode(root, std::make_shared<const std::string>(file), "", 1);
 }
@@ -232,26 +266,31 @@ void WriteFileAtomic(const std::string& path, const std::string& contents) {
   std::string tmp = (dir / ("." + target.filename().string() + ".tmp.XXXXXX")).string();
   const int fd = mkstemp(tmp.data());
   if (fd < 0) {
-    throw InputError(path, 0, "", "cannot create a temporary file next to it: " +
-                                      std::string(std::strerror(errno)));
+    throw IoError(path, "cannot create a temporary file next to it: " +
+                            std::string(std::strerror(errno)));
   }
   // mkstemp creates 0600; written files should carry the usual permissions (umask applied).
   const mode_t mask = umask(0);
   umask(mask);
   fchmod(fd, 0666 & ~mask);
   size_t written = 0;
+  int write_errno = 0;
   while (written < contents.size()) {
     const ssize_t n = ::write(fd, contents.data() + written, contents.size() - written);
     if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) break;
+    if (n <= 0) {
+      write_errno = n < 0 ? errno : ENOSPC;
+      break;
+    }
     written += static_cast<size_t>(n);
   }
-  const bool closed = ::close(fd) == 0;
-  const bool ok = written == contents.size() && closed;
-  if (!ok || std::rename(tmp.c_str(), path.c_str()) != 0) {
-    const std::string reason = std::strerror(errno);
+  // fsync before the rename: after a crash the name points at complete contents or the old file.
+  if (write_errno == 0 && ::fsync(fd) != 0) write_errno = errno;
+  if (::close(fd) != 0 && write_errno == 0) write_errno = errno;
+  if (write_errno == 0 && std::rename(tmp.c_str(), path.c_str()) != 0) write_errno = errno;
+  if (write_errno != 0) {
     std::remove(tmp.c_str());
-    throw InputError(path, 0, "", "cannot write file: " + reason);
+    throw IoError(path, "cannot write file: " + std::string(std::strerror(write_errno)));
   }
 }
 

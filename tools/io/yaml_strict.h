@@ -81,16 +81,27 @@ class StrictMap {
   std::vector<Entry> entries_;
 };
 
-// Reads and parses a YAML file; a missing file or a syntax error is an InputError. `file` is the
-// path as given by the user and is the name used in every message.
+// Why `path` cannot be read as an input file, or "" if it can: it must exist, be a regular file
+// (not a directory, FIFO or device such as /dev/zero, which would block or never end) and hold
+// at most max_bytes.
+std::string InputFileProblem(const std::string& path, uint64_t max_bytes);
+// Largest YAML input file (task, vehicle, soil, original config): 64 MiB, ten times the largest
+// task with a 1024 x 1024 patch grid.
+constexpr uint64_t kMaxYamlFileBytes = 64ull << 20;
+
+// Reads and parses a YAML file; a missing, special or oversized file or a syntax error is an
+// InputError. `file` is the path as given by the user and is the name used in every message.
 StrictNode LoadYamlFile(const std::string& file);
+// The same for YAML text already in memory; `file` names it in messages (fuzzing, tests).
+StrictNode LoadYamlText(const std::string& text, const std::string& file);
 
 // Shortest text that reads back as exactly the same double, always with a '.' or exponent so
 // the value reads as a number with a fractional part ("128.0", "0.1", "1e-07").
 std::string FormatDouble(double v);
 
 // Writes `contents` to `path` atomically: a temporary file in the same directory, then a rename,
-// so readers never see a half-written file. Throws InputError naming the path on failure.
+// so readers never see a half-written file. Throws IoError naming the path on failure (disk full,
+// read-only, missing directory): a failure of the system, not of the input.
 void WriteFileAtomic(const std::string& path, const std::string& contents);
 
 }  // namespace vb::io

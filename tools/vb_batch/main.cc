@@ -112,7 +112,20 @@ Plan PlanResume(const Options& o, const vb::batch::MatrixSpec& spec,
     if (fs::exists(json)) {
       try {
         record = vb::io::ReadTrialJson(json.string());
-        have_record = true;
+        // A record must be this trial's, and a finished trial's trajectory complete: anything
+        // else (a record copied under another name, a deleted or cut trajectory) is re-run.
+        std::string problem = vb::io::RecordKeyProblem(
+            record, spec.tasks[k.task_index].name, k.pair, k.seed, k.vehicle, k.system);
+        if (problem.empty() && record.status != "crashed") {
+          const fs::path traj = fs::path(o.out_dir) / "trials" / (stem + "_traj.csv");
+          problem = vb::io::TrajectoryProblem(traj.string(), record);
+        }
+        if (problem.empty()) {
+          have_record = true;
+        } else {
+          std::fprintf(stderr, "vb_batch: warning: %s: %s; re-running\n", json.c_str(),
+                       problem.c_str());
+        }
       } catch (const vb::InputError& e) {
         std::fprintf(stderr, "vb_batch: warning: unreadable record, re-running: %s\n", e.what());
       }
@@ -171,6 +184,7 @@ class ProgressBar {
 
 struct RunCounts {
   size_t finished = 0, successes = 0, crashed = 0;
+  size_t io_failed = 0;   // trials left without a record because a file could not be written
 };
 
 // Runs `todo` with up to `jobs` forked workers at a time until done or a stop signal; a worker
@@ -189,7 +203,11 @@ RunCounts RunTrials(const Options& o, const vb::batch::MatrixSpec& spec,
   std::map<pid_t, Running> running;
   size_t next = 0;
   RunCounts c;
+  const pid_t parent = ::getpid();
   while (next < todo.size() || !running.empty()) {
+    // After a failed write (disk full) starting more trials only burns CPU: let the running ones
+    // end, then stop; the trials without a record run on resume.
+    if (c.io_failed > 0) next = todo.size();
     if (g_stop_signal != 0) {
       for (const auto& [p, r] : running) ::kill(p, SIGKILL);
       for (const auto& [p, r] : running) ::waitpid(p, nullptr, 0);
@@ -203,6 +221,7 @@ RunCounts RunTrials(const Options& o, const vb::batch::MatrixSpec& spec,
       const pid_t pid = ::fork();
       if (pid < 0) throw std::runtime_error(std::string("fork failed: ") + std::strerror(errno));
       if (pid == 0) {
+        DieWithParent(parent);
         ::signal(SIGINT, SIG_DFL);
         ::signal(SIGTERM, SIG_DFL);
         ::close(lock_fd);
@@ -235,6 +254,19 @@ RunCounts RunTrials(const Options& o, const vb::batch::MatrixSpec& spec,
     const double wall_s = std::chrono::duration<double>(Clock::now() - r.start).count();
     const std::string json = (trials_dir / (r.stem + ".json")).string();
     std::string result;
+    if (WIFEXITED(status) && WEXITSTATUS(status) == kWorkerIoFailureExit) {
+      // The worker could not write its files (it said why on stderr): no record at all.
+      std::error_code ec;
+      fs::remove(json, ec);
+      ++c.io_failed;
+      ++c.finished;
+      if (!o.quiet && !tty) {
+        std::printf("[%zu/%zu] %s not recorded (I/O error)\n", c.finished, todo.size(),
+                    r.stem.c_str());
+        std::fflush(stdout);
+      }
+      continue;
+    }
     bool have_record = WIFEXITED(status) && WEXITSTATUS(status) == 0 && fs::exists(json);
     if (have_record) {
       try {
@@ -249,9 +281,14 @@ RunCounts RunTrials(const Options& o, const vb::batch::MatrixSpec& spec,
           WTERMSIG(status) == SIGKILL) {
         why = "wall-clock limit of " + vb::io::FormatDouble(o.trial_timeout_s) + " s exceeded";
       }
-      vb::io::WriteUnrunTrialJson(json, spec.tasks[r.key.task_index].name, r.key.pair,
-                                  ProvenanceFor(spec.tasks[r.key.task_index], r.key), "crashed",
-                                  why);
+      try {
+        vb::io::WriteUnrunTrialJson(json, spec.tasks[r.key.task_index].name, r.key.pair,
+                                    ProvenanceFor(spec.tasks[r.key.task_index], r.key),
+                                    "crashed", why);
+      } catch (const vb::IoError& e) {
+        std::fprintf(stderr, "vb_batch: I/O error: %s\n", e.what());
+        ++c.io_failed;
+      }
       result = "crashed";
       ++c.crashed;
     }
@@ -349,6 +386,13 @@ int Run(const Options& o) {
   if (c.crashed > 0) {
     std::printf("vb_batch: %zu trial(s) crashed; run the same command again to retry them\n",
                 c.crashed);
+  }
+  if (c.io_failed > 0) {
+    std::fprintf(stderr,
+                 "vb_batch: error: %zu trial(s) could not be recorded (I/O error, e.g. disk full; "
+                 "see above); fix the cause and run the same command again to run them\n",
+                 c.io_failed);
+    return 1;
   }
   return 0;
 }

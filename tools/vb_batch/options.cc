@@ -24,7 +24,7 @@ execution:
   --out DIR            output directory (required); re-running the same command resumes
   --jobs N             parallel trials (default: CPUs available to this process)
   --shard i/N          run only shard i of N (0-based; every N-th trial of the matrix)
-  --time-limit S       simulated time limit per trial (default 60, the benchmark rule)
+  --time-limit S       simulated time limit per trial, in (0, 3600] (default 60, the benchmark rule)
   --soil NAME          soil parameters data/soils/NAME.yaml for tasks with mud, sand or snow
                        (default: verti_bench, the original's three soils)
   --traj-every N       keep every N-th physics step in the trajectories (default 1)
@@ -41,7 +41,8 @@ Trial status: success, rollover, stuck, timeout, sim_error, out_of_bounds (the r
 (trial could not be set up, e.g. a task file that does not load) or crashed (worker died;
 retried on the next run).
 
-exit codes: 0 every trial has a record; 1 internal error; 2 bad input (flags, stale results,
+exit codes: 0 every trial has a record; 1 internal error, or an I/O error such as a full disk
+(the trials left without a record run on resume); 2 bad input (flags, stale results,
 another vb_batch running on DIR); 130/143 interrupted by SIGINT/SIGTERM (running trials are
 stopped, the index is written; run the same command to resume).
 )";
@@ -60,7 +61,9 @@ std::vector<uint64_t> ParseIntList(const std::string& flag, const std::string& t
     const uint64_t a = vb::io::ParseU64(flag, item.substr(0, dash));
     const uint64_t b = vb::io::ParseU64(flag, item.substr(dash + 1));
     if (b < a || b - a > 100000) throw vb::InputError("", 0, flag, "bad range '" + item + "'");
-    for (uint64_t v = a; v <= b; ++v) out.push_back(v);
+    // Counted, not `v <= b`: a range ending at 2^64 - 1 would never end.
+    for (uint64_t n = 0; n <= b - a; ++n) out.push_back(a + n);
+    if (out.size() > 1000000) throw vb::InputError("", 0, flag, "more than 1000000 values");
   }
   return out;
 }
@@ -91,7 +94,7 @@ Options ParseArgs(int argc, char** argv) {
     } else if (a == "--soil") {
       o.soil = args.Value();
     } else if (a == "--time-limit") {
-      o.time_limit_s = args.NumberValue(/*positive=*/true);
+      o.time_limit_s = args.PositiveValueAtMost(vb::runner::kMaxTimeLimit_s);
     } else if (a == "--traj-every") {
       o.traj_every = static_cast<int>(args.U64Value(1, 1000000));
     } else if (a == "--trial-timeout") {

@@ -12,6 +12,7 @@
 #include "io/soil_io.h"
 #include "io/task_io.h"
 #include "io/vehicle_io.h"
+#include "io/yaml_strict.h"
 #include "vb/controllers/controller.h"
 #include "vb/engine/error.h"
 #include "vb/engine/runner/episode.h"
@@ -90,6 +91,7 @@ int DefaultJobs() {
 vb::batch::MatrixSpec BuildSpec(const Options& o, const std::vector<std::string>& files) {
   vb::batch::MatrixSpec spec;
   std::vector<double> scales;
+  std::vector<double> seen_scales;   // of the tasks --scale filtered out, for the message
   if (!o.scales.empty()) {
     for (const std::string& s : vb::io::SplitList(o.scales, ',')) {
       scales.push_back(vb::io::ParseNonNegative("--scale", s));
@@ -117,10 +119,20 @@ vb::batch::MatrixSpec BuildSpec(const Options& o, const std::vector<std::string>
     if (!scales.empty() && t.load_error.empty() &&
         std::none_of(scales.begin(), scales.end(),
                      [&](double s) { return std::abs(s - t.scale) <= 1e-9 * std::max(1.0, s); })) {
+      if (std::find(seen_scales.begin(), seen_scales.end(), t.scale) == seen_scales.end()) {
+        seen_scales.push_back(t.scale);
+      }
       continue;
     }
     t.task_fnv1a64 = vb::io::MakeProvenance(task, vb::runner::TrialSpec()).task_fnv1a64;
     spec.tasks.push_back(std::move(t));
+  }
+  if (spec.tasks.empty() && !seen_scales.empty()) {
+    std::sort(seen_scales.begin(), seen_scales.end());
+    std::string have;
+    for (double s : seen_scales) have += (have.empty() ? "" : ", ") + vb::io::FormatDouble(s);
+    throw vb::InputError("", 0, "--scale",
+                         "no task has world scale " + o.scales + "; the given tasks have " + have);
   }
   if (!o.pairs.empty() && o.pairs != "all") {
     for (uint64_t p : ParseIntList("--pairs", o.pairs)) {
@@ -132,7 +144,9 @@ vb::batch::MatrixSpec BuildSpec(const Options& o, const std::vector<std::string>
   spec.systems = NameList("--systems", o.systems, vb::controllers::ControllerNames());
   for (uint64_t s : ParseIntList("--seeds", o.seeds)) spec.seeds.push_back(s);
   // The soil file is read in every worker that needs it; check it once here so a bad name or
-  // file is one clear error, not a batch of error trials.
+  // file is one clear error, not a batch of error trials. Names come from the listing, so
+  // "../x" cannot reach outside soils/.
+  NameList("--soil", o.soil, vb::io::SoilNames(DataDir()));
   vb::io::LoadSoil(DataDir() + "/soils/" + o.soil + ".yaml");
   return spec;
 }

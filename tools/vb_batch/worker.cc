@@ -1,6 +1,9 @@
 #include "worker.h"
 
+#include <signal.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <cstdlib>
@@ -52,12 +55,23 @@ namespace vb_batch {
       vb::io::WriteUnrunTrialJson(stem_path + ".json", t.name, key.pair, ProvenanceFor(t, key),
                                   "error", e.what());
     }
+  } catch (const vb::IoError& e) {
+    // Disk full or similar: not the trial's fault, and not deterministic. No record, so the
+    // trial runs again on resume; the parent reports it and exits 1.
+    std::fprintf(stderr, "vb_batch worker: %s: I/O error: %s\n", stem_path.c_str(), e.what());
+    code = kWorkerIoFailureExit;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "vb_batch worker: %s: %s\n", stem_path.c_str(), e.what());
     code = 1;   // the parent records the trial as crashed
   }
   std::fflush(stderr);
   std::_Exit(code);
+}
+
+void DieWithParent(pid_t parent) {
+  ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+  // The parent may have died between fork and prctl: then nobody would send the signal.
+  if (::getppid() != parent) std::_Exit(1);
 }
 
 std::string DescribeWaitStatus(int status) {

@@ -13,6 +13,7 @@
 #include "io/task_io.h"
 #include "io/world_picture.h"
 #include "vb/engine/error.h"
+#include "vb/terrain/task.h"
 #include "vb/terrain/generator.h"
 #include "vb/terrain/scale.h"
 
@@ -91,9 +92,8 @@ Options ParseArgs(int argc, char** argv) {
       o.have_seed = true;
     } else if (a == "--name") {
       o.gen.name = args.Value();
-      if (o.gen.name.empty() || o.gen.name.find('/') != std::string::npos) {
-        throw vb::InputError("", 0, a, "must be a non-empty file stem without '/'");
-      }
+      const std::string problem = vb::terrain::TaskNameProblem(o.gen.name);
+      if (!problem.empty()) throw vb::InputError("", 0, a, problem);
       o.have_name = true;
     } else if (a == "--elevation") {
       static constexpr ElevationLevel kAll[] = {ElevationLevel::kLow, ElevationLevel::kMid,

@@ -11,6 +11,7 @@
 #include "io/task_io.h"
 #include "io/world_picture.h"
 #include "vb/engine/error.h"
+#include "vb/terrain/task.h"
 #include "vb/terrain/original_world.h"
 #include "vb/terrain/scale.h"
 
@@ -66,9 +67,8 @@ Options ParseArgs(int argc, char** argv) {
       o.image_dir = args.Value();
     } else if (a == "--name") {
       o.name = args.Value();
-      if (o.name.empty() || o.name.find('/') != std::string::npos) {
-        throw vb::InputError("", 0, a, "must be a non-empty file stem without '/'");
-      }
+      const std::string problem = vb::terrain::TaskNameProblem(o.name);
+      if (!problem.empty()) throw vb::InputError("", 0, a, problem);
     } else if (a == "--scale") {
       o.scale = args.ScaleValue();
     } else if (a == "--picture") {
@@ -82,7 +82,15 @@ Options ParseArgs(int argc, char** argv) {
   if (o.world.empty()) throw vb::InputError("", 0, "--world", "required (see --help)");
   if (o.out_dir.empty()) throw vb::InputError("", 0, "--out", "required (see --help)");
   if (o.image_dir.empty()) o.image_dir = o.out_dir;
-  if (o.name.empty()) o.name = fs::path(o.config).stem().string();
+  if (o.name.empty()) {
+    o.name = fs::path(o.config).stem().string();
+    const std::string problem = vb::terrain::TaskNameProblem(o.name);
+    if (!problem.empty()) {
+      throw vb::InputError(o.config, 0, "--name", "the config's file stem '" + o.name +
+                                                      "' is not a task name (" + problem +
+                                                      "); give --name");
+    }
+  }
   return o;
 }
 

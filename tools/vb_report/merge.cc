@@ -37,11 +37,34 @@ int Merge(const std::vector<std::string>& args) {
     same("git_commit", first.git_commit, info.git_commit);
     same("vb_version", first.vb_version, info.vb_version);
     vb::batch::MergeInput in{dir.string(), info.git_commit, info.vb_version, ReadIndex(dir)};
+    // The per-trial records are the truth (docs/batch.md): each must read, agree with its index
+    // row, come from the shard's build and have its complete trajectory. A shard whose files were
+    // damaged after it finished is refused, never copied (DEF-10 of the probe).
     for (const vb::batch::TrialRow& r : in.rows) {
       const fs::path record = dir / "trials" / (Stem(r) + ".json");
       if (!fs::exists(record)) {
         throw vb::InputError(record.string(), 0, "", "listed in the index but missing");
       }
+      vb::batch::TrialRow from_record = vb::io::ReadTrialJson(record.string());
+      from_record.matrix_index = r.matrix_index;
+      from_record.scale = r.scale;
+      from_record.elevation = r.elevation;
+      from_record.terrain = r.terrain;
+      from_record.density = r.density;
+      if (from_record.git_commit != info.git_commit || from_record.vb_version != info.vb_version) {
+        throw vb::InputError(record.string(), 0, "provenance",
+                             "made by vb " + from_record.vb_version + " (" +
+                                 from_record.git_commit + "), the shard by vb " +
+                                 info.vb_version + " (" + info.git_commit + ")");
+      }
+      if (vb::batch::StableFields(from_record) != vb::batch::StableFields(r)) {
+        throw vb::InputError(record.string(), 0, "",
+                             "disagrees with its row in " + (dir / "index.csv").string() +
+                                 " (an edited record or index; re-run the shard)");
+      }
+      const std::string traj_problem = vb::io::TrajectoryProblem(
+          (dir / "trials" / (Stem(r) + "_traj.csv")).string(), from_record);
+      if (!traj_problem.empty()) throw vb::InputError(record.string(), 0, "", traj_problem);
     }
     inputs.push_back(std::move(in));
   }
@@ -54,7 +77,13 @@ int Merge(const std::vector<std::string>& args) {
     throw vb::InputError(out.string(), 0, "merge", msg + "nothing written");
   }
 
+  // A fresh directory only: files already there (another merge, a stray trial) would mix with
+  // the merged ones.
   std::error_code ec;
+  if (fs::exists(out, ec) && !(fs::is_directory(out, ec) && fs::is_empty(out, ec))) {
+    throw vb::InputError(out.string(), 0, "OUT_DIR",
+                         "exists and is not an empty directory; merge into a new one");
+  }
   fs::create_directories(out / "trials", ec);
   if (ec) throw vb::InputError(out.string(), 0, "OUT_DIR", "cannot create: " + ec.message());
   std::vector<vb::batch::TrialRow> rows;

@@ -55,6 +55,16 @@ int Report(const std::vector<std::string>& args) {
   fs::create_directories(out, ec);
   if (ec) throw vb::InputError(out, 0, "--out", "cannot create directory: " + ec.message());
 
+  // Rows of several builds are aggregated (a merge of re-run shards can do that on purpose), but
+  // never silently: results of different code are not one benchmark run.
+  std::map<std::string, int> builds;
+  for (const vb::batch::TrialRow& r : rows) ++builds["vb " + r.vb_version + " (" + r.git_commit + ")"];
+  if (builds.size() > 1) {
+    std::string list;
+    for (const auto& [b, n] : builds) list += "\n  " + b + ": " + std::to_string(n) + " trial(s)";
+    std::fprintf(stderr, "vb_report: warning: the index mixes results of %zu builds:%s\n",
+                 builds.size(), list.c_str());
+  }
   const vb::batch::Report report = vb::batch::BuildReport(rows);
   vb::io::WriteFileAtomic(out + "/table1.csv", vb::batch::Table1Csv(report));
   vb::io::WriteFileAtomic(out + "/fig6.csv", vb::batch::FactorsCsv(report));
@@ -92,9 +102,12 @@ int Report(const std::vector<std::string>& args) {
       } else {
         std::snprintf(caption, sizeof(caption), "%s  %s", stem.c_str(), r.status.c_str());
       }
-      vb::io::WriteTopDownPng(it->second, r.pair,
-                              (fs::path(dir) / "trials" / (stem + "_traj.csv")).string(),
-                              caption, out + "/topdown/" + stem + ".png");
+      // The picture draws the trajectory: it must be the record's, complete (DEF-16).
+      const std::string record = (fs::path(dir) / "trials" / (stem + ".json")).string();
+      const std::string traj = (fs::path(dir) / "trials" / (stem + "_traj.csv")).string();
+      const std::string problem = vb::io::TrajectoryProblem(traj, vb::io::ReadTrialJson(record));
+      if (!problem.empty()) throw vb::InputError(record, 0, "--topdown", problem);
+      vb::io::WriteTopDownPng(it->second, r.pair, traj, caption, out + "/topdown/" + stem + ".png");
       ++pictures;
     }
   }

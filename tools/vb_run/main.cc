@@ -34,8 +34,9 @@ options:
   --seed S           trial seed, an unsigned 64-bit integer (default: 0)
   --out DIR          output directory (default: results/<task name>/)
   --traj-every N     keep every N-th physics step in the trajectory (default: 1)
-  --time-limit S     simulated time limit in seconds (default: 60, the benchmark rule; for tests
-                     and quick looks only, results with another limit are not benchmark results)
+  --time-limit S     simulated time limit in seconds, in (0, 3600] (default: 60, the benchmark
+                     rule; for tests and quick looks only, results with another limit are not
+                     benchmark results)
   --quiet            no per-trial lines, only the final summary
   --help             this text
 
@@ -47,7 +48,7 @@ and DIR/summary.csv with one row per trial of this run. Files are written atomic
 exit codes:
   0  all trials ran (whatever their status: success, rollover, stuck, timeout, sim_error,
      out_of_bounds)
-  1  internal error
+  1  internal error, or an I/O error (a result file cannot be written, e.g. disk full)
   2  bad input (task, vehicle, system, pair, flags); the message names the culprit
 )";
 
@@ -87,7 +88,7 @@ Options ParseArgs(int argc, char** argv) {
     } else if (a == "--traj-every") {
       o.traj_every = static_cast<int>(args.U64Value(1, 1000000));
     } else if (a == "--time-limit") {
-      o.time_limit_s = args.NumberValue(/*positive=*/true);
+      o.time_limit_s = args.PositiveValueAtMost(vb::runner::kMaxTimeLimit_s);
     } else if (a == "--quiet") {
       o.quiet = true;
     } else if (args.IsFlag()) {
@@ -117,6 +118,13 @@ int Run(const Options& o) {
     throw vb::InputError("", 0, "--system",
                          "unknown system '" + o.system + "'; valid: " + vb::io::JoinNames(systems));
   }
+  // Checked against the listing even when the task needs no soil: a typo is an error either way,
+  // and a name can never reach outside soils/.
+  const std::vector<std::string> soils = vb::io::SoilNames(data_dir);
+  if (std::find(soils.begin(), soils.end(), o.soil) == soils.end()) {
+    throw vb::InputError("", 0, "--soil", "unknown soil '" + o.soil + "' in " + data_dir +
+                                              "/soils; valid: " + vb::io::JoinNames(soils));
+  }
   const vb::terrain::TaskSpec task = vb::io::LoadTask(o.task_path);
   const std::string vehicle_file = data_dir + "/vehicles/" + o.vehicle + ".yaml";
   const vb::vehicles::VehicleParams params =
@@ -130,7 +138,15 @@ int Run(const Options& o) {
   if (o.pair == "all") {
     for (size_t k = 0; k < task.pairs.size(); ++k) pairs.push_back(static_cast<int>(k));
   } else {
-    pairs.push_back(static_cast<int>(vb::io::ParseU64("--pair", o.pair)));
+    // Compared as 64-bit: a cast first would wrap 2^32 + 1 to pair 1.
+    const uint64_t k = vb::io::ParseU64("--pair", o.pair);
+    if (k >= task.pairs.size()) {
+      throw vb::InputError(o.task_path, 0, "--pair",
+                           "pair " + o.pair + " out of range; task '" + task.name + "' has " +
+                               std::to_string(task.pairs.size()) + " pairs (0.." +
+                               std::to_string(task.pairs.size() - 1) + ")");
+    }
+    pairs.push_back(static_cast<int>(k));
   }
 
   const std::string out_dir = o.out_dir.empty() ? "results/" + task.name : o.out_dir;
@@ -153,8 +169,9 @@ int Run(const Options& o) {
     const std::string stem = out_dir + "/" + vb::io::TrialFileStem(r);
     vb::io::Provenance provenance = vb::io::MakeProvenance(task, spec);
     vb::io::RecordParameterFiles(vehicle_file, o.soil, soil ? soil_file : "", &provenance);
-    vb::io::WriteTrialJson(r, stem + ".json", provenance);
+    // Trajectory first: a record's presence implies its trajectory is complete (as vb_batch).
     vb::io::WriteTrajectoryCsv(r, stem + "_traj.csv");
+    vb::io::WriteTrialJson(r, stem + ".json", provenance);
     ++counts[static_cast<int>(r.status)];
     if (!o.quiet) {
       std::printf("%s pair %d: %-9s t = %6.2f s  goal distance %6.2f m  RTF %.1f%s%s\n",

@@ -42,6 +42,9 @@ struct TrialRow {
   double wall_time_s = 0.0;
   std::string task_file;
   std::string message;
+  // Not an index column: the record's trajectory length (-1 unknown, e.g. error/crashed), read
+  // from the JSON so resume, merge and --topdown can check the trajectory file against it.
+  long trajectory_samples = -1;
 };
 
 // File stem of a row's trial files: <task>_p<K>_s<seed>_<vehicle>_<system> (as TrialStem).
@@ -50,7 +53,9 @@ std::string RowStem(const TrialRow& row);
 // CSV text of the index (header + rows in the given order). Numbers print with "%.17g", NaN as
 // an empty field.
 std::string IndexCsv(const std::vector<TrialRow>& rows);
-// Parses IndexCsv output; throws InputError naming `source` and the line on malformed input.
+// Parses IndexCsv output; throws InputError naming `source` and the line on malformed input: a
+// missing or misplaced column (named), a number that is not finite or is negative, an unknown
+// status, or the same trial listed twice.
 std::vector<TrialRow> ParseIndexCsv(const std::string& text, const std::string& source);
 
 // The fields that must agree between two records of the same trial (everything except host and

@@ -1,6 +1,9 @@
 // Error tiers (docs/architecture.md "Errors"):
 //  - InputError: bad user input (task, vehicle file, CLI). Thrown only at load/build time; carries
 //    file, line and key so the message can point at the exact spot. Tools exit with code 2.
+//  - IoError: the system failed us (a file cannot be written: disk full, read-only, permissions),
+//    not the input. Distinct from InputError so a batch never records it as a deterministic
+//    `error` trial: it is retried. Tools exit with code 1.
 //  - VB_DEMAND: programmer bug; always on, aborts with file:line.
 //  - Numerical trouble during a trial is data, not an exception: see runner TrialStatus.
 #pragma once
@@ -33,6 +36,17 @@ class InputError : public std::runtime_error {
   std::string file_;
   int line_;
   std::string key_;
+};
+
+// An operating-system failure on a file: `path` and the reason (strerror text).
+class IoError : public std::runtime_error {
+ public:
+  IoError(const std::string& path, const std::string& what)
+      : std::runtime_error(path + ": " + what), path_(path) {}
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
 };
 
 }  // namespace vb

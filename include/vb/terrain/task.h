@@ -33,6 +33,7 @@ struct PatchGrid {
 
 // A rock: collision box (4.4, 4.4, 3.8) m * scale * task.scale, as the original, resting on the
 // terrain (bottom face at the lowest ground point under it, terrain_physics.h).
+constexpr double kRockSideAtScale1_m = 4.4;   // the rock box's side at both scales 1
 struct RockSpec {
   double x_m = 0.0;
   double y_m = 0.0;
@@ -64,6 +65,25 @@ struct TaskLabels {
 
 // The distinct classes of a patch grid, ascending by id (the label stored in task files).
 std::vector<SurfaceClass> ClassesPresent(const PatchGrid& patches);
+
+// Limits of a loadable task (tools/io/task_io.cc checks them; vb_gen and vb_import keep their
+// outputs inside them). Far beyond any benchmark world (128 m, scale 1, 1/6 or 1/10, rock scales
+// 0.7 to 1.2, at most ~40 obstacles): they exist so that absurd but finite values fail as bad
+// input instead of overflowing a derived length or cell count, or running for hours.
+struct TaskLimits {
+  static constexpr double kMinWorldScale = 1e-3;
+  static constexpr double kMaxWorldScale = 1e3;
+  static constexpr double kMaxRockScale = 100.0;   // a rock's box must also fit in the world
+  static constexpr double kMaxWorldSize_m = 1e5;   // per side
+  static constexpr size_t kMaxObstacles = 10000;   // rocks + trees
+  static constexpr int kMaxImageSide = 8192;       // height image pixels per side
+  static constexpr size_t kMaxNameLength = 128;
+};
+
+// Why `name` cannot be a task name, or "" if it can. A task name is a file-name component of
+// every output (<name>_p<K>_...json): 1 to 128 characters of [A-Za-z0-9_.-], not starting with
+// '.' or '-', so it can neither leave the output directory nor hide a file, and it is ASCII.
+std::string TaskNameProblem(const std::string& name);
 
 struct TaskSpec {
   static constexpr int kFormatVersion = 1;

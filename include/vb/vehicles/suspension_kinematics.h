@@ -56,6 +56,8 @@ struct Table1D {
 // Shock length vs wheel travel over [lo, hi] (n samples) at zero rack travel.
 Table1D ShockLengthTable(const DoubleWishboneHardpoints& hp, double lo_m, double hi_m, int n);
 // Road-wheel angle of the LEFT wheel vs rack travel over [-rack_max, rack_max] at zero travel.
+// Throws std::runtime_error if the linkage does not assemble somewhere on the way.
+constexpr int kSteerAngleTableSamples = 41;   // the vehicle's table (the loader checks the same)
 Table1D SteerAngleTable(const DoubleWishboneHardpoints& hp, double rack_max_m, int n);
 
 }  // namespace vb::vehicles

@@ -34,15 +34,12 @@ using Clock = std::chrono::steady_clock;
 constexpr double kRadToDeg = 180.0 / kPi;
 // A vehicle on its side or roof cannot recover on its own: the trial may stop there.
 constexpr double kTippedOverRoll_rad = 0.5 * kPi;
-// Beyond these the state is physically meaningless (the world is 128 m wide at scale 1 and the
-// HMMWV tops out near 40 m/s): treat as a numerical blow-up, not as driving.
+// Beyond these the state is physically meaningless (10 km away from the world's box, which is
+// 128 m wide at scale 1, and the HMMWV tops out near 40 m/s): a numerical blow-up, not driving.
 constexpr double kAbsurdDistance_m = 1.0e4;
 constexpr double kAbsurdSpeed_mps = 200.0;
 // A touch of the same obstacle within this time is the same contact event.
 constexpr double kContactGap_s = 0.5;
-// Longest time limit: one simulated day (a benchmark trial is 60 s; beyond this the step counter
-// and the trajectory are not meant to hold a trial).
-constexpr double kMaxTimeLimit_s = 86400.0;
 // The trajectory's storage is reserved for this much simulated time at most; longer trials grow
 // it (amortised) rather than reserve gigabytes up front.
 constexpr double kTrajectoryReserve_s = 60.0;
@@ -56,15 +53,27 @@ std::string Fmt(double x) {
   return buf;
 }
 
+// Distance of p from the world's box (its rectangle times its height range; 0 inside): the
+// divergence test measures how far the vehicle got from the world, not from the origin, so a
+// world at 1000 km altitude is not a blow-up (DEF-15 of the probe).
+double DistanceFromWorld(const terrain::TaskSpec& task, const Vec3& p) {
+  const double hx = 0.5 * task.size_x_m;
+  const double hy = 0.5 * task.size_y_m;
+  const Vec3 nearest(std::clamp(p.x(), -hx, hx), std::clamp(p.y(), -hy, hy),
+                     std::clamp(p.z(), task.min_height_m, task.max_height_m));
+  return (p - nearest).norm();
+}
+
 // Empty string if the state is usable; otherwise why it is not.
-std::string CheckState(const vehicles::VehicleState& s) {
+std::string CheckState(const terrain::TaskSpec& task, const vehicles::VehicleState& s) {
   const Vec3& p = s.pose_W.position;
   if (!IsFinite(p) || !IsFinite(s.velocity_W) || !IsFinite(s.angular_velocity_W) ||
       !s.pose_W.rotation.coeffs().allFinite() || !std::isfinite(s.forward_speed_mps)) {
     return "non-finite vehicle state";
   }
-  if (p.norm() > kAbsurdDistance_m) {
-    return "vehicle position diverged (|p| = " + Fmt(p.norm()) + " m)";
+  const double away_m = DistanceFromWorld(task, p);
+  if (away_m > kAbsurdDistance_m) {
+    return "vehicle position diverged (" + Fmt(away_m) + " m away from the world)";
   }
   if (s.velocity_W.norm() > kAbsurdSpeed_mps) {
     return "vehicle speed diverged (" + Fmt(s.velocity_W.norm()) + " m/s)";
@@ -124,6 +133,16 @@ void ValidateRules(const EpisodeRules& rules) {
   }
   if (rules.trajectory_every_n_steps < 0) {
     throw InputError("", 0, "trajectory_every_n_steps", "must be >= 0 (0: no trajectory)");
+  }
+  if (rules.trajectory_every_n_steps > 0) {
+    const double samples = rules.time_limit_s / rules.step_s / rules.trajectory_every_n_steps;
+    if (samples > static_cast<double>(kMaxTrajectorySamples)) {
+      throw InputError("", 0, "trajectory_every_n_steps",
+                       "a time limit of " + Fmt(rules.time_limit_s) + " s would keep " +
+                           Fmt(samples) + " trajectory samples, at most " +
+                           std::to_string(kMaxTrajectorySamples) +
+                           " are kept: keep fewer steps (vb_run --traj-every)");
+    }
   }
   if (!(rules.stuck_window_s > 0.0) || !(rules.stuck_window_s <= kMaxTimeLimit_s)) {
     throw InputError("", 0, "stuck_window_s", "must be in (0, " + Fmt(kMaxTimeLimit_s) + "] s");
@@ -250,7 +269,7 @@ void Episode::Impl::PhysicsStep() {
 
   // Numerical trouble ends the trial as data, never as a crash.
   const std::string trouble =
-      world->StateIsFinite() ? CheckState(s) : "non-finite physics state";
+      world->StateIsFinite() ? CheckState(task, s) : "non-finite physics state";
   if (!trouble.empty()) {
     progress.status = TrialStatus::kSimError;
     progress.message = trouble + " at t = " + Fmt(t) + " s";

@@ -45,6 +45,13 @@ struct StepTimings {
   size_t soil_memory_bytes = 0;   // tiles + tile index
 };
 
+// Longest time limit of a trial: one simulated hour (a benchmark trial is 60 s). It bounds the
+// step counter and, with kMaxTrajectorySamples, the memory of a trajectory; tools check their
+// --time-limit against it so the message names the flag.
+constexpr double kMaxTimeLimit_s = 3600.0;
+// Most samples a trajectory may keep (about 330 MB): time_limit / (step * every) must not exceed it.
+constexpr long kMaxTrajectorySamples = 1000000;
+
 struct EpisodeRules {
   double step_s = 0.005;               // physics step (as the original)
   // Time one Episode::Step advances with its command held: a whole number of physics steps.
