@@ -10,6 +10,8 @@ packages=(
   libyaml-cpp-dev                # task and vehicle files
   libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev   # height images
   libgtest-dev                   # tests
+  python3 python3-venv           # the Python package's virtual environment (.venv)
+  nlohmann-json3-dev             # vb_gym protocol headers (JSON)
 )
 
 missing=()
