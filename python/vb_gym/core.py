@@ -84,7 +84,12 @@ class EnvCore:
         return float(self._state[self._si[name]])
 
     def observation(self) -> Any:
-        s = self._s
+        values = self._state.tolist()
+        si = self._si
+
+        def s(name: str) -> float:
+            return values[si[name]]
+
         yaw = s("yaw_rad")
         c, sn = math.cos(yaw), math.sin(yaw)
 
@@ -126,12 +131,13 @@ class EnvCore:
         return self.observation(), self._info(header)
 
     def command(self, action: Any) -> dict[str, Any]:
-        a = np.asarray(action, dtype=np.float64).reshape(-1)
+        a = np.asarray(action, dtype=np.float64)
         if a.shape != self.action_space.shape:
             raise ValueError(f"action: expected shape {self.action_space.shape}, got {a.shape}")
-        if not np.all(np.isfinite(a)):
-            raise ValueError(f"action: non-finite values {a.tolist()}")
-        a = np.clip(a, -1.0, 1.0)
+        a = a.tolist()
+        if not all(math.isfinite(x) for x in a):
+            raise ValueError(f"action: non-finite values {a}")
+        a = [min(max(x, -1.0), 1.0) for x in a]
         if self.config.action == "speed":
             return {"op": "step", "steering": float(a[0]),
                     "speed_mps": float(a[1]) * float(self.config.max_speed_mps)}

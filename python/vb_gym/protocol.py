@@ -60,8 +60,10 @@ def decode_arrays(header: dict[str, Any], payload: bytes) -> dict[str, np.ndarra
     offset = 0
     for spec in header.get("arrays", []):
         dtype = _DTYPES[spec["dtype"]]
-        shape = tuple(int(n) for n in spec["shape"])
-        count = int(np.prod(shape)) if shape else 1
+        shape = tuple(spec["shape"])
+        count = 1
+        for n in shape:
+            count *= n
         nbytes = count * dtype.itemsize
         if offset + nbytes > len(payload):
             raise ValueError(f"payload too short for array {spec['name']!r}")
@@ -146,7 +148,8 @@ class ServerProcess:
         except (BrokenPipeError, OSError):
             raise self._crashed("went away before the request could be sent") from None
 
-    def _read_exact(self, n: int, deadline: float) -> bytes:
+    def _fill(self, n: int, deadline: float) -> None:
+        """Reads until the buffer holds at least n bytes (one read usually brings a whole frame)."""
         fd = self._proc.stdout.fileno()
         while len(self._buffer) < n:
             left = deadline - time.monotonic()
@@ -160,18 +163,20 @@ class ServerProcess:
             if not chunk:
                 raise self._crashed("closed its output (it exited or crashed)")
             self._buffer += chunk
-        out = bytes(self._buffer[:n])
-        del self._buffer[:n]
-        return out
 
     def receive(self) -> tuple[dict[str, Any], bytes]:
         """The next reply frame (header, payload); raises VbGymError for an error frame."""
         if self._proc is None:
             raise RuntimeError("the vb_gym server is closed")
         deadline = time.monotonic() + self.timeout_s
-        header_len, payload_len = _PREFIX.unpack(self._read_exact(_PREFIX.size, deadline))
-        header = json.loads(self._read_exact(header_len, deadline).decode("utf-8"))
-        payload = self._read_exact(payload_len, deadline) if payload_len else b""
+        self._fill(_PREFIX.size, deadline)
+        header_len, payload_len = _PREFIX.unpack_from(self._buffer)
+        end = _PREFIX.size + header_len + payload_len
+        self._fill(end, deadline)
+        buf = self._buffer
+        header = json.loads(bytes(buf[_PREFIX.size:_PREFIX.size + header_len]))
+        payload = bytes(buf[_PREFIX.size + header_len:end])
+        del buf[:end]
         if header.get("type") == "error":
             raise VbGymError(header.get("op", "?"), header.get("kind", "?"), header["message"])
         return header, payload
