@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import dataclasses
 import os
+import re
 import subprocess
 from pathlib import Path
 from typing import Any, Sequence
@@ -74,6 +75,7 @@ class EnvConfig:
     lookahead_m: float = 10.0
     replan_period_s: float = 0.1
     keep_trajectory: bool = False       # needed only to write results (evaluation)
+    system: str = "gym"                 # the system's name in result files
     episode_cache: int = 4
     server_binary: str | None = None
     timeout_s: float = 600.0
@@ -126,6 +128,9 @@ class EnvConfig:
             if not all(isinstance(p, int) and p >= 0 for p in self.pairs) or not self.pairs:
                 raise ConfigError(f"pairs: expected a non-empty list of indices >= 0, got "
                                   f"{self.pairs!r}")
+        if not re.fullmatch(r"[A-Za-z0-9_-][A-Za-z0-9_.-]{0,63}", str(self.system)):
+            raise ConfigError(f"system: {self.system!r} is not a name of 1-64 letters, digits, "
+                              "'_', '-', '.'")
         if not isinstance(self.reward, RewardWeights):
             raise ConfigError("reward: expected a vb_gym.RewardWeights")
         self.reward.validate()

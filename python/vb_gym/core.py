@@ -118,9 +118,9 @@ class EnvCore:
         return obs
 
     # --- requests ---
-    def send_reset(self, task: int, pair: int, trial_seed: int, system: str = "gym") -> None:
+    def send_reset(self, task: int, pair: int, trial_seed: int) -> None:
         self.server.send({"op": "reset", "task": int(task), "pair": int(pair),
-                          "seed": int(trial_seed), "system": system})
+                          "seed": int(trial_seed), "system": self.config.system})
 
     def receive_reset(self) -> tuple[Any, dict[str, Any]]:
         header, payload = self.server.receive()

@@ -19,7 +19,8 @@ constexpr const char* kUsage = R"(usage: vb_gym [--help]
 
 Hosts one environment (tasks, vehicle, one running episode) and serves the vb gym protocol,
 version 1 (docs/gym_protocol.md), on stdin/stdout: length-prefixed frames of a JSON header and
-raw little-endian arrays. Requests: hello, configure, reset, step, result, write_result, close.
+raw little-endian arrays. Requests: hello, configure, reset, step, result, write_result,
+write_index, close.
 Meant to be started by a client (the Python package vb_gym, python/), not by hand.
 
 Every request gets one reply; a bad request gets an error frame naming what is wrong and the

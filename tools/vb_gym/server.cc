@@ -7,16 +7,20 @@
 #include <cstdio>
 #include <filesystem>
 #include <stdexcept>
+#include <tuple>
 #include <utility>
 
 #include <nlohmann/json.hpp>
 
+#include "io/batch_io.h"
 #include "io/build_info.h"
 #include "io/cli_args.h"
 #include "io/result_io.h"
 #include "io/soil_io.h"
 #include "io/task_io.h"
 #include "io/vehicle_io.h"
+#include "io/yaml_strict.h"
+#include "vb/batch/index.h"
 #include "vb/controllers/pid_controller.h"
 #include "vb/engine/error.h"
 
@@ -195,13 +199,16 @@ bool Server::Handle(const Frame& request, std::string* reply_header,
       ResultReply(j, reply_header);
     } else if (op == "write_result") {
       WriteResult(j, reply_header);
+    } else if (op == "write_index") {
+      WriteIndex(j, reply_header);
     } else if (op == "close") {
       CheckKeys(j, op, {"op"});
       *reply_header = json{{"type", "bye"}}.dump();
       return false;
     } else {
       throw RequestError("unknown op '" + op +
-                         "'; valid: hello, configure, reset, step, result, write_result, close");
+                         "'; valid: hello, configure, reset, step, result, write_result, "
+                         "write_index, close");
     }
   } catch (const RequestError& e) {
     reply_payload->clear();
@@ -539,6 +546,52 @@ void Server::WriteResult(const json& j, std::string* reply) {
   io::WriteTrajectoryCsv(r, stem + "_traj.csv");
   *reply = json{{"type", "written"}, {"json", stem + ".json"},
                 {"trajectory", stem + "_traj.csv"}}.dump();
+}
+
+void Server::WriteIndex(const json& j, std::string* reply) {
+  namespace fs = std::filesystem;
+  const std::string op = "write_index";
+  CheckKeys(j, op, {"op", "dir"});
+  const fs::path dir = GetString(j, op, "dir", "", /*required=*/true);
+  const fs::path trials = dir / "trials";
+  if (!fs::is_directory(trials)) {
+    throw RequestError("op 'write_index': no directory '" + trials.string() + "'");
+  }
+  std::vector<fs::path> files;
+  for (const fs::directory_entry& e : fs::directory_iterator(trials)) {
+    if (e.path().extension() == ".json") files.push_back(e.path());
+  }
+  std::sort(files.begin(), files.end());
+  // Labels and scale come from the task file a record names (the configured tasks first).
+  std::vector<terrain::TaskSpec> loaded;
+  auto task_of = [&](const batch::TrialRow& r) -> const terrain::TaskSpec& {
+    for (const std::vector<terrain::TaskSpec>* list : {&tasks_, &loaded}) {
+      for (const terrain::TaskSpec& t : *list) {
+        if (t.source_file == r.task_file) return t;
+      }
+    }
+    loaded.push_back(io::LoadTask(r.task_file));
+    return loaded.back();
+  };
+  std::vector<batch::TrialRow> rows;
+  for (const fs::path& f : files) {
+    batch::TrialRow r = io::ReadTrialJson(f.string());
+    const terrain::TaskSpec& t = task_of(r);
+    r.scale = t.scale;
+    r.elevation = std::string(terrain::ElevationLevelName(t.labels.elevation));
+    r.terrain = std::string(terrain::TerrainTypeName(t.labels.terrain));
+    r.density = std::string(terrain::ObstacleDensityName(t.labels.density));
+    rows.push_back(std::move(r));
+  }
+  // vb_batch's matrix order: task, pair, vehicle, system, seed.
+  std::sort(rows.begin(), rows.end(), [](const batch::TrialRow& a, const batch::TrialRow& b) {
+    return std::tie(a.task, a.pair, a.vehicle, a.system, a.seed) <
+           std::tie(b.task, b.pair, b.vehicle, b.system, b.seed);
+  });
+  for (size_t i = 0; i < rows.size(); ++i) rows[i].matrix_index = i;
+  io::WriteFileAtomic((dir / "index.csv").string(), batch::IndexCsv(rows));
+  *reply = json{{"type", "indexed"}, {"index", (dir / "index.csv").string()},
+                {"trials", rows.size()}}.dump();
 }
 
 }  // namespace vb::gym

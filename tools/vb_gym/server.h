@@ -67,6 +67,9 @@ class Server {
   void Step(const nlohmann::json& request, std::string* reply, std::vector<uint8_t>* payload);
   void ResultReply(const nlohmann::json& request, std::string* reply);
   void WriteResult(const nlohmann::json& request, std::string* reply);
+  // Rebuilds DIR/index.csv (vb_batch's format, docs/batch.md) from every record in DIR/trials,
+  // so that vb_report shows gym-evaluated systems beside vb_batch's baselines.
+  void WriteIndex(const nlohmann::json& request, std::string* reply);
   runner::Episode& EpisodeFor(int task);
   void ObservationReply(std::string* reply, std::vector<uint8_t>* payload);
   void RequireEpisode(const char* op) const;
