@@ -218,3 +218,17 @@ def test_reward_terms_on_hand_made_situations():
     assert step(custom, 0.1, (0, 0), (1, 0), (9, 0), 0, 0, "success", 5)[0] == pytest.approx(11)
     with pytest.raises(ValueError, match="unknown trial status"):
         step(w, 0.1, (0, 0), (1, 0), (9, 0), 0, 0, "exploded", 5.0)
+
+
+def test_generated_training_worlds_and_deformable_soil(tmp_path):
+    """Worlds from vb_gen seeds (outside the benchmark set) load as tasks; on a deformable one
+    the wheels sink (the soil solver is live behind the gym)."""
+    gen = vb_gym.GeneratedTasks(seeds=(7,), terrain="deformable", out_dir=str(tmp_path))
+    with VbEnv(tasks=gen, crops=(Crop("semantics", 8, 1.0),)) as env:
+        assert [t["name"] for t in env.tasks] == ["gen_mid_deformable_sparse_s7"]
+        obs, info = env.reset(seed=0, options={"pair": 2})
+        for _ in range(20):
+            obs, *_ = env.step(np.array([0.0, 1.0], np.float32))
+        assert obs["wheels"][:, 3].max() > 0.01          # sinkage (m)
+        assert obs["semantics"].max() >= 7                # mud, sand or snow around
+    assert (tmp_path / "tasks" / "gen_mid_deformable_sparse_s7.yaml").exists()

@@ -36,18 +36,27 @@ CROP_BOUNDS = {
 
 
 class EnvCore:
-    def __init__(self, config: EnvConfig):
+    def __init__(self, config: EnvConfig, wait: bool = True):
+        """Starts the server and sends configure; with wait=False the caller finishes with
+        finish_configure() (a vector env configures all its servers at once: loading 100 tasks
+        takes seconds)."""
         config.validate()
         self.config = config
         self.server: ServerProcess | None = None
         self.server = ServerProcess(config.server_binary, config.timeout_s)
-        reply, _ = self.server.request(config.configure_request())
+        self.server.send(config.configure_request())
+        if wait:
+            self.finish_configure()
+
+    def finish_configure(self) -> None:
+        config = self.config
+        reply, _ = self.server.receive()
         self.tasks: list[dict[str, Any]] = reply["tasks"]
         self.state_fields: list[str] = reply["state_fields"]
         self._si = {name: i for i, name in enumerate(self.state_fields)}
         self.num_wheels = int(reply["num_wheels"])
         self.control_period_s = float(reply["control_period_s"])
-        for i, t in enumerate(self.tasks):
+        for t in self.tasks:
             bad = [p for p in (config.pairs or []) if p >= t["pairs"]]
             if bad:
                 raise ValueError(f"pairs: {bad} out of range for task {t['file']} "

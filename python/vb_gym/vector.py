@@ -51,7 +51,12 @@ class VbVectorEnv(VectorEnv):
         self.num_envs = num_envs
         try:
             for _ in range(num_envs):
-                self._cores.append(EnvCore(config))
+                self._cores.append(EnvCore(config, wait=False))
+            for i, core in enumerate(self._cores):
+                try:
+                    core.finish_configure()
+                except (ServerCrashed, VbGymError) as e:
+                    raise self._fail(i, e) from None
         except BaseException:
             self.close()
             raise
