@@ -232,3 +232,20 @@ def test_generated_training_worlds_and_deformable_soil(tmp_path):
         assert obs["wheels"][:, 3].max() > 0.01          # sinkage (m)
         assert obs["semantics"].max() >= 7                # mud, sand or snow around
     assert (tmp_path / "tasks" / "gen_mid_deformable_sparse_s7.yaml").exists()
+
+
+def test_perception_presets_reach_the_observation_and_stay_seeded():
+    """A perception preset changes what the policy sees (not the physics), and the same seed
+    still gives the same bits."""
+    opts = dict(tasks=RIGID_TASK, crops=(Crop("elevation", 8, 0.5),))
+    runs = {}
+    for preset in ("none", "severe", "severe"):
+        with VbEnv(perception=preset, **opts) as env:
+            obs, _ = env.reset(seed=4)
+            steps = [env.step(np.array([0.0, 0.5], np.float32))[0] for _ in range(5)]
+            runs.setdefault(preset, []).append(np.concatenate(
+                [o["elevation"].ravel() for o in [obs] + steps]))
+    assert np.array_equal(runs["severe"][0], runs["severe"][1])
+    assert not np.array_equal(runs["none"][0], runs["severe"][0])
+    with pytest.raises(VbGymError, match="perception"):
+        VbEnv(perception="blurry", **opts)

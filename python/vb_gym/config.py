@@ -59,6 +59,8 @@ class EnvConfig:
     tasks: Any = "tasks/env042.yaml"   # file, directory, list of them, or GeneratedTasks
     vehicle: str = "hmmwv"
     soil: str = "verti_bench"
+    perception: str = "none"            # what the policy sees: none (ground truth), a preset of
+                                        # data/perception (mild, moderate, severe) or a .yaml
     control_period_s: float = 0.1       # 0.005 reproduces the original's 200 Hz policy
     time_limit_s: float = 60.0
     pairs: Sequence[int] | None = None  # pair indices to draw from (default: all of each task)
@@ -70,6 +72,8 @@ class EnvConfig:
     crops: Sequence[Crop] = (Crop("elevation", 64, 0.1),)
     include_wheels: bool = True
     relative_elevation: bool = True     # elevation crops minus the chassis height
+    unknown_elevation_m: float = 0.0    # value of elevation cells the perception did not see
+                                        # (NaN in vb's crops; spaces hold finite numbers)
     flatten: bool = False               # one flat Box instead of a Dict
     reward: RewardWeights = dataclasses.field(default_factory=RewardWeights)
     lookahead_m: float = 10.0
@@ -145,6 +149,7 @@ class EnvConfig:
             "tasks": self.task_files(),
             "vehicle": self.vehicle,
             "soil": self.soil,
+            "perception": str(self.perception),
             "control_period_s": float(self.control_period_s),
             "time_limit_s": float(self.time_limit_s),
             "lookahead_m": float(self.lookahead_m),

@@ -119,8 +119,11 @@ class EnvCore:
             obs["wheels"] = self._arrays["wheels"].astype(np.float32)
         for crop in self.config.crops:
             a = self._arrays[crop.key].astype(np.float32)
-            if crop.layer == "elevation" and self.config.relative_elevation:
-                a = a - np.float32(s("z_m"))
+            if crop.layer == "elevation":
+                if self.config.relative_elevation:
+                    a = a - np.float32(s("z_m"))
+                if self.config.perception != "none":
+                    a = np.nan_to_num(a, nan=np.float32(self.config.unknown_elevation_m))
             obs[crop.key] = a
         if self.config.flatten:
             return spaces.flatten(self._dict_space, obs)

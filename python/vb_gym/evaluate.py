@@ -3,6 +3,7 @@
     python -m vb_gym.evaluate TASK_OR_DIR... --system NAME --policy MODULE:FACTORY --out DIR
         [--pairs all|0,3,5-9] [--seeds 0] [--workers 1] [--vehicle hmmwv] [--time-limit 60]
         [--control-period 0.1] [--action speed|direct] [--crops elevation:64:0.1,...]
+        [--perception none|mild|moderate|severe|FILE]
     python -m vb_gym.evaluate --index-only --out DIR
 
 ``FACTORY(env)`` is called once per worker with its VbEnv and returns the policy: a callable
@@ -131,6 +132,8 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--workers", type=int, default=1)
     ap.add_argument("--vehicle", default="hmmwv")
     ap.add_argument("--soil", default="verti_bench")
+    ap.add_argument("--perception", default="none",
+                    help="none (ground truth), a preset of data/perception, or a .yaml file")
     ap.add_argument("--time-limit", type=float, default=60.0,
                     help="simulated seconds (60: the benchmark rule; other values for tests)")
     ap.add_argument("--control-period", type=float, default=0.1)
@@ -158,6 +161,7 @@ def main(argv: list[str] | None = None) -> int:
     load_factory(args.policy)   # fail before starting anything
     config = EnvConfig.from_kwargs(
         tasks=resolve_tasks(args.tasks), vehicle=args.vehicle, soil=args.soil,
+        perception=args.perception,
         time_limit_s=args.time_limit, control_period_s=args.control_period,
         action=args.action, max_speed_mps=args.max_speed, crops=parse_crops(args.crops),
         flatten=args.flatten, keep_trajectory=True, system=args.system)
@@ -165,6 +169,8 @@ def main(argv: list[str] | None = None) -> int:
     seeds = parse_indices(args.seeds, "--seeds") or [0]
     with VbEnv(config) as env:   # checks the configuration; names the tasks
         tasks = env.tasks
+    # File stems as vb_batch names them (a perception suffix only when not ground truth).
+    suffix = "" if args.perception == "none" else f"_perc-{Path(args.perception).stem}"
     todo, done = [], 0
     for ti, task in enumerate(tasks):
         for pair in (pairs if pairs is not None else range(task["pairs"])):
@@ -172,7 +178,7 @@ def main(argv: list[str] | None = None) -> int:
                 raise SystemExit(f"vb_gym.evaluate: error: --pairs: {pair} out of range for "
                                  f"{task['file']} ({task['pairs']} pairs)")
             for seed in seeds:
-                stem = f"{task['name']}_p{pair}_s{seed}_{args.vehicle}_{args.system}"
+                stem = f"{task['name']}_p{pair}_s{seed}_{args.vehicle}_{args.system}{suffix}"
                 if recorded(trial_dir / f"{stem}.json"):
                     done += 1
                 else:

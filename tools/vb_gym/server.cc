@@ -15,6 +15,7 @@
 #include "io/batch_io.h"
 #include "io/build_info.h"
 #include "io/cli_args.h"
+#include "io/perception_io.h"
 #include "io/result_io.h"
 #include "io/soil_io.h"
 #include "io/task_io.h"
@@ -228,7 +229,8 @@ bool Server::Handle(const Frame& request, std::string* reply_header,
 
 void Server::Configure(const json& j, std::string* reply) {
   const std::string op = "configure";
-  CheckKeys(j, op, {"op", "tasks", "vehicle", "soil", "control_period_s", "time_limit_s",
+  CheckKeys(j, op, {"op", "tasks", "vehicle", "soil", "perception", "control_period_s",
+                    "time_limit_s",
                     "lookahead_m", "replan_period_s", "crops", "action", "speed_kp",
                     "trajectory_every_n_steps", "episode_cache"});
   GymConfig c;
@@ -245,6 +247,7 @@ void Server::Configure(const json& j, std::string* reply) {
   c.soil = GetString(j, op, "soil", c.soil);
   CheckName(op, "vehicle", c.vehicle);
   CheckName(op, "soil", c.soil);
+  c.perception = GetString(j, op, "perception", c.perception);
   const runner::EpisodeRules defaults;
   c.control_period_s = GetNumber(j, op, "control_period_s", c.control_period_s, 1e-9, 60.0);
   const double ratio = c.control_period_s / defaults.step_s;
@@ -307,6 +310,10 @@ void Server::Configure(const json& j, std::string* reply) {
   std::vector<terrain::TaskSpec> tasks;
   tasks.reserve(c.task_files.size());
   const std::string soil_file = data_dir_ + "/soils/" + c.soil + ".yaml";
+  runner::PerceptionParams perception =
+      io::ResolvePerception(c.perception, data_dir_, "perception");
+  const std::string perception_file =
+      c.perception == "none" ? "" : io::PerceptionFile(c.perception, data_dir_);
   std::optional<soil::SoilConfig> soil;
   for (const std::string& f : c.task_files) {
     tasks.push_back(io::LoadTask(f));
@@ -319,6 +326,8 @@ void Server::Configure(const json& j, std::string* reply) {
   vehicle_file_ = vehicle_file;
   soil_ = std::move(soil);
   soil_file_ = soil_ ? soil_file : "";
+  perception_ = std::move(perception);
+  perception_file_ = perception_file;
   cache_.clear();
   episode_ = nullptr;
   task_index_ = -1;
@@ -344,6 +353,7 @@ void Server::Configure(const json& j, std::string* reply) {
   r["step_s"] = runner::EpisodeRules().step_s;
   r["control_period_s"] = config_.control_period_s;
   r["time_limit_s"] = config_.time_limit_s;
+  r["perception"] = perception_.name;
   json tj = json::array();
   for (const terrain::TaskSpec& t : tasks_) {
     tj.push_back({{"name", t.name}, {"file", t.source_file}, {"pairs", t.pairs.size()},
@@ -376,6 +386,7 @@ runner::Episode& Server::EpisodeFor(int task) {
   rules.control_period_s = rules.step_s;
   rules.time_limit_s = config_.time_limit_s;
   rules.trajectory_every_n_steps = config_.trajectory_every_n_steps;
+  rules.perception = perception_;
   CachedEpisode c;
   c.task = task;
   c.last_used = use_counter_;
@@ -541,6 +552,7 @@ void Server::WriteResult(const json& j, std::string* reply) {
   const terrain::TaskSpec& task = tasks_[static_cast<size_t>(task_index_)];
   io::Provenance provenance = io::MakeProvenance(task, spec_);
   io::RecordParameterFiles(vehicle_file_, config_.soil, soil_file_, &provenance);
+  io::RecordPerception(perception_.name, perception_file_, &provenance);
   const std::string stem = dir + "/" + io::TrialFileStem(r);
   io::WriteTrialJson(r, stem + ".json", provenance);
   io::WriteTrajectoryCsv(r, stem + "_traj.csv");
@@ -583,10 +595,10 @@ void Server::WriteIndex(const json& j, std::string* reply) {
     r.density = std::string(terrain::ObstacleDensityName(t.labels.density));
     rows.push_back(std::move(r));
   }
-  // vb_batch's matrix order: task, pair, vehicle, system, seed.
+  // vb_batch's matrix order: task, pair, vehicle, system, perception, seed.
   std::sort(rows.begin(), rows.end(), [](const batch::TrialRow& a, const batch::TrialRow& b) {
-    return std::tie(a.task, a.pair, a.vehicle, a.system, a.seed) <
-           std::tie(b.task, b.pair, b.vehicle, b.system, b.seed);
+    return std::tie(a.task, a.pair, a.vehicle, a.system, a.perception, a.seed) <
+           std::tie(b.task, b.pair, b.vehicle, b.system, b.perception, b.seed);
   });
   for (size_t i = 0; i < rows.size(); ++i) rows[i].matrix_index = i;
   io::WriteFileAtomic((dir / "index.csv").string(), batch::IndexCsv(rows));

@@ -35,6 +35,7 @@ struct GymConfig {
   std::vector<std::string> task_files;
   std::string vehicle = "hmmwv";
   std::string soil = "verti_bench";
+  std::string perception = "none";       // preset of data/perception or a .yaml file
   double control_period_s = 0.1;
   double time_limit_s = 60.0;
   controllers::ObservationConfig observation;
@@ -82,6 +83,8 @@ class Server {
   std::string vehicle_file_;
   std::optional<soil::SoilConfig> soil_;
   std::string soil_file_;
+  runner::PerceptionParams perception_;
+  std::string perception_file_;          // "" for ground truth
   std::string arrays_json_;   // the obs frame's "arrays" list (fixed by the configuration)
   std::vector<CachedEpisode> cache_;
   uint64_t use_counter_ = 0;
