@@ -25,7 +25,7 @@ std::string TrajectoryProblem(const std::string& traj_path, const batch::TrialRo
 // under another trial's file name).
 std::string RecordKeyProblem(const batch::TrialRow& record, const std::string& task, int pair,
                              uint64_t seed, const std::string& vehicle,
-                             const std::string& system);
+                             const std::string& system, const std::string& perception);
 
 // Writes the JSON record of a trial that did not produce a runner result: status "error" (could
 // not be set up) or "crashed" (worker died), with the reason in `message`; same layout as

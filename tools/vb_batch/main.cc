@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "io/batch_io.h"
+#include "io/perception_io.h"
 #include "io/cli_args.h"
 #include "io/result_io.h"
 #include "io/yaml_strict.h"
@@ -115,7 +116,8 @@ Plan PlanResume(const Options& o, const vb::batch::MatrixSpec& spec,
         // A record must be this trial's, and a finished trial's trajectory complete: anything
         // else (a record copied under another name, a deleted or cut trajectory) is re-run.
         std::string problem = vb::io::RecordKeyProblem(
-            record, spec.tasks[k.task_index].name, k.pair, k.seed, k.vehicle, k.system);
+            record, spec.tasks[k.task_index].name, k.pair, k.seed, k.vehicle, k.system,
+            k.perception);
         if (problem.empty() && record.status != "crashed") {
           const fs::path traj = fs::path(o.out_dir) / "trials" / (stem + "_traj.csv");
           problem = vb::io::TrajectoryProblem(traj.string(), record);
@@ -354,6 +356,11 @@ int Run(const Options& o) {
                          vb::io::FileFnv1a64Hex(DataDir() + "/soils/" + o.soil + ".yaml");
   for (const std::string& v : spec.vehicles) {
     settings += " vehicle=" + v + ":" + vb::io::FileFnv1a64Hex(DataDir() + "/vehicles/" + v + ".yaml");
+  }
+  for (const std::string& p : spec.perceptions) {
+    if (p == "none") continue;  // ground truth has no file (and older batches no such entry)
+    settings += " perception=" + p + ":" +
+                vb::io::FileFnv1a64Hex(vb::io::PerceptionFile(p, DataDir()));
   }
   const int lock_fd = PrepareOutputDir(o, settings);
   const vb::io::Provenance build = ProvenanceFor(spec.tasks.front(), all.front());

@@ -25,6 +25,7 @@ struct TrialRow {
   uint64_t seed = 0;
   std::string vehicle;
   std::string system;
+  std::string perception = "none";   // perception preset (docs/perception.md)
   double scale = 1.0;
   std::string elevation;
   std::string terrain;
@@ -47,15 +48,19 @@ struct TrialRow {
   long trajectory_samples = -1;
 };
 
-// File stem of a row's trial files: <task>_p<K>_s<seed>_<vehicle>_<system> (as TrialStem).
+// File stem of a row's trial files: <task>_p<K>_s<seed>_<vehicle>_<system>[_perc-<preset>]
+// (as TrialStem; the suffix only for a perception other than none).
 std::string RowStem(const TrialRow& row);
+// "" for ground truth ("none"), "_perc-<preset>" otherwise.
+std::string PerceptionStemSuffix(const std::string& perception);
 
 // CSV text of the index (header + rows in the given order). Numbers print with "%.17g", NaN as
 // an empty field.
 std::string IndexCsv(const std::vector<TrialRow>& rows);
-// Parses IndexCsv output; throws InputError naming `source` and the line on malformed input: a
-// missing or misplaced column (named), a number that is not finite or is negative, an unknown
-// status, or the same trial listed twice.
+// Parses IndexCsv output (also indexes without the perception column: "none"); throws InputError
+// naming `source` and the line on malformed input: a missing or unexpected column (named), a
+// number that is not finite or is negative, an unknown status, a name that is not a file-name
+// component, or the same trial listed twice.
 std::vector<TrialRow> ParseIndexCsv(const std::string& text, const std::string& source);
 
 // The fields that must agree between two records of the same trial (everything except host and
