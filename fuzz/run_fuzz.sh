@@ -15,7 +15,8 @@ here="$(cd "$(dirname "$0")/.." && pwd)"
 seconds="${1:-600}"
 shift || true
 build="$here/build-fuzz"
-all=(task_yaml vehicle_yaml soil_yaml original_config labels_npy trial_json batch_json index_csv)
+all=(task_yaml vehicle_yaml soil_yaml original_config labels_npy trial_json batch_json index_csv
+     gym_frame)
 targets=("$@")
 [ ${#targets[@]} -eq 0 ] && targets=("${all[@]}")
 

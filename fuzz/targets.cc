@@ -1,5 +1,6 @@
 #include "targets.h"
 
+#include <fcntl.h>
 #include <sys/mman.h>
 #include <unistd.h>
 
@@ -7,6 +8,7 @@
 #include <new>
 #include <string>
 
+#include "frame.h"
 #include "io/batch_io.h"
 #include "io/original_io.h"
 #include "io/soil_io.h"
@@ -112,6 +114,21 @@ std::string IndexCsv(const std::string& bytes) {
   return Check([&] { batch::ParseIndexCsv(bytes, "index.csv"); });
 }
 
+// The vb_gym protocol's frame reader on a stream of bytes: it must return kOk, kEof or
+// kFramingError for anything a client sends, frame after frame.
+std::string GymFrames(const std::string& bytes) {
+  const MemoryFile f(bytes);
+  return Check([&] {
+    const int fd = ::open(f.path().c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd < 0) return;
+    gym::Frame frame;
+    std::string error;
+    for (int k = 0; k < 64 && gym::ReadFrame(fd, &frame, &error) == gym::ReadStatus::kOk; ++k) {
+    }
+    ::close(fd);
+  });
+}
+
 }  // namespace
 
 const std::vector<Target>& Targets() {
@@ -125,6 +142,7 @@ const std::vector<Target>& Targets() {
       {"trial_json", &TrialJson, {}},
       {"batch_json", &BatchJson, {}},
       {"index_csv", &IndexCsv, {}},
+      {"gym_frame", &GymFrames, {}},
   };
   return kTargets;
 }

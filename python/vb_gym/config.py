@@ -105,8 +105,8 @@ class EnvConfig:
                 f"control_period_s: {self.control_period_s!r} is not a positive whole number of "
                 f"physics steps of {PHYSICS_STEP_S} s"
             )
-        if not (0 < self.time_limit_s <= 86400):
-            raise ConfigError(f"time_limit_s: {self.time_limit_s!r} not in (0, 86400]")
+        if not (0 < self.time_limit_s <= 3600):  # runner::kMaxTimeLimit_s
+            raise ConfigError(f"time_limit_s: {self.time_limit_s!r} not in (0, 3600]")
         if not (self.max_speed_mps > 0):
             raise ConfigError(f"max_speed_mps: {self.max_speed_mps!r} must be > 0")
         if isinstance(self.crops, Crop):

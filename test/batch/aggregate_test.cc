@@ -162,6 +162,9 @@ TEST(AggregateTest, RobustnessTableOrdersPresetsAndKeepsSystemsApart) {
 
 TEST(IndexPerceptionTest, IndexesWithoutThePerceptionColumnReadAsGroundTruth) {
   TrialRow r;
+  r.task = "env000";   // names are checked file-name components (docs/reliability.md, DEF-3)
+  r.vehicle = "hmmwv";
+  r.system = "pid";
   r.status = "success";
   r.perception = "severe";
   std::string text = IndexCsv({r});
@@ -176,8 +179,8 @@ TEST(IndexPerceptionTest, IndexesWithoutThePerceptionColumnReadAsGroundTruth) {
   const std::vector<TrialRow> old = ParseIndexCsv(text, "old.csv");
   ASSERT_EQ(old.size(), 1u);
   EXPECT_EQ(old[0].perception, "none");
-  EXPECT_EQ(RowStem(old[0]), "_p0_s0__");
-  EXPECT_EQ(RowStem(back[0]), "_p0_s0___perc-severe");
+  EXPECT_EQ(RowStem(old[0]), "env000_p0_s0_hmmwv_pid");
+  EXPECT_EQ(RowStem(back[0]), "env000_p0_s0_hmmwv_pid_perc-severe");
 }
 
 }  // namespace

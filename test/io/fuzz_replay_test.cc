@@ -57,6 +57,6 @@ TEST_P(FuzzReplayTest, SeedsAndTheirPrefixesAreAcceptedOrRefusedCleanly) {
 INSTANTIATE_TEST_SUITE_P(AllTargets, FuzzReplayTest,
                          ::testing::Values("task_yaml", "vehicle_yaml", "soil_yaml",
                                            "original_config", "labels_npy", "trial_json",
-                                           "batch_json", "index_csv"));
+                                           "batch_json", "index_csv", "gym_frame"));
 
 }  // namespace

@@ -256,7 +256,8 @@ void Server::Configure(const json& j, std::string* reply) {
                        " s is not a whole number of physics steps of " + Fmt(defaults.step_s) +
                        " s");
   }
-  c.time_limit_s = GetNumber(j, op, "time_limit_s", c.time_limit_s, 1e-9, 86400.0);
+  c.time_limit_s = GetNumber(j, op, "time_limit_s", c.time_limit_s, 1e-9,
+                            vb::runner::kMaxTimeLimit_s);
   c.observation.lookahead_m = GetNumber(j, op, "lookahead_m", c.observation.lookahead_m, 0.0, 1e4);
   c.observation.replan_period_s =
       GetNumber(j, op, "replan_period_s", c.observation.replan_period_s, 0.0, 1e4);
