@@ -10,6 +10,7 @@ packages=(
   libyaml-cpp-dev                # task and vehicle files
   libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev   # height images
   libgtest-dev                   # tests
+  python3 chromium               # headless-browser tests of the 3-D viewer (docs/viewer.md)
 )
 
 missing=()
