@@ -2,8 +2,7 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
+#include <cstdio>
 #include <vector>
 
 #include "io/batch_io.h"
@@ -22,12 +21,16 @@ namespace fs = std::filesystem;
 namespace {
 
 bool ReadText(const std::string& path, std::string* text) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return false;
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  *text = ss.str();
-  return true;
+  // One read of the whole file (a full-rate trajectory is megabytes; streams copy it twice).
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (f == nullptr) return false;
+  std::fseek(f, 0, SEEK_END);
+  const long size = std::ftell(f);
+  std::fseek(f, 0, SEEK_SET);
+  text->resize(size > 0 ? static_cast<size_t>(size) : 0);
+  const bool ok = size >= 0 && std::fread(text->data(), 1, text->size(), f) == text->size();
+  std::fclose(f);
+  return ok;
 }
 
 }  // namespace
@@ -58,9 +61,13 @@ double GoalRadius(const terrain::TaskSpec& task) {
 
 std::string Bundle(const std::string& task_json, const std::string& vehicle_json, int pair,
                    const std::string& trial_json) {
-  return "{\"format\": \"vb-viewer\", \"version\": 1, \"pair\": " + std::to_string(pair) +
-         ",\n\"task\": " + task_json + ",\n\"vehicle\": " + vehicle_json + ",\n\"trial\": " +
-         (trial_json.empty() ? "null" : trial_json) + "}\n";
+  std::string out;
+  out.reserve(task_json.size() + vehicle_json.size() + trial_json.size() + 128);
+  out += "{\"format\": \"vb-viewer\", \"version\": 1, \"pair\": " + std::to_string(pair);
+  out.append(",\n\"task\": ").append(task_json);
+  out.append(",\n\"vehicle\": ").append(vehicle_json);
+  out.append(",\n\"trial\": ").append(trial_json.empty() ? "null" : trial_json);
+  return out += "}\n";
 }
 
 // The task a record names, checked against the record's task name and hash.
@@ -172,9 +179,11 @@ std::string TrialBundleJson(const std::string& result_path, const BundleOptions&
   std::string trial = "{\"result_file\": " + io::JsonString(result_path) +
                       ", \"result_json\": " + JsonText(result_text) +
                       ", \"trajectory_file\": " + io::JsonString(traj_path) +
-                      ", \"trajectory_csv\": " + (have_traj ? JsonText(traj_text) : "null") +
-                      ", \"trajectory_error\": " +
-                      (have_traj ? "null" : io::JsonString("cannot read " + traj_path)) + "}";
+                      ", \"trajectory_csv\": ";
+  trial.append(have_traj ? JsonText(traj_text) : "null");
+  trial.append(", \"trajectory_error\": ")
+      .append(have_traj ? "null" : io::JsonString("cannot read " + traj_path))
+      .append("}");
   return Bundle(loaded.scene_json, vehicle_json, row.pair, trial);
 }
 
