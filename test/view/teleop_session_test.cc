@@ -140,6 +140,7 @@ TEST(TeleopSessionTest, BadMessagesAreRejectedAndChangeNothing) {
   EXPECT_NE(s.HandleMessage("", 0.0).find("empty"), std::string::npos);
   EXPECT_NE(s.HandleMessage("jump", 0.0).find("unknown message 'jump'"), std::string::npos);
   EXPECT_NE(s.HandleMessage("start now", 0.0).find("no arguments"), std::string::npos);
+  EXPECT_NE(s.HandleMessage("start", 0.0).find("a drive is running"), std::string::npos);
   EXPECT_EQ(s.command().throttle, 0.5);
   EXPECT_EQ(s.command().steering, 0.1);
   EXPECT_TRUE(s.driving());

@@ -275,6 +275,31 @@ class Client {
   std::string buffer_;
 };
 
+TEST(ViewServerIdleTest, SilentClientIsDisconnectedAndOthersAreServed) {
+  ServerConfig config;
+  config.port = 0;
+  config.http_idle_limit_s = 0.3;
+  ViewServer server(config);
+  std::thread thread([&] { server.Run(); });
+  Client silent(server.port());
+  Client partial(server.port());
+  ASSERT_TRUE(silent.connected() && partial.connected());
+  partial.Send("GET /api/scene HTTP/1.1\r\n");   // never finished
+  {
+    Client other(server.port());   // served while the two hang around
+    other.Send("GET /nowhere HTTP/1.1\r\n\r\n");
+    EXPECT_NE(other.ReadUntil("}").find("404 Not Found"), std::string::npos);
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  EXPECT_EQ(silent.ReadUntil("never"), "");     // closed by the server: recv returns 0
+  EXPECT_EQ(partial.ReadUntil("never"), "");
+  const double waited =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  EXPECT_LT(waited, 4.0);   // well before the client's own 5 s receive timeout
+  server.Stop();
+  thread.join();
+}
+
 TEST(ViewServerTeleopTest, DriveOverAWebSocketIsRecorded) {
   const terrain::TaskSpec task = test::PlaneTask();
   TeleopOptions options;

@@ -64,6 +64,8 @@ std::string TeleopSession::HandleMessage(const std::string& text, double wall_s)
   if (w.empty()) return "empty message (expected start, command or stop)";
   if (w[0] == "start") {
     if (w.size() != 1) return "start takes no arguments";
+    if (driving_) return "a drive is running: stop it first (it is then recorded)";
+    if (finished_) return "the last drive is not recorded yet";
     runner::TrialSpec spec;
     spec.pair_index = options_.pair;
     spec.seed = options_.seed;

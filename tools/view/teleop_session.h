@@ -4,7 +4,8 @@
 // with a scripted clock; view_server.cc feeds it the real one and the WebSocket messages.
 //
 // Client messages (text, one per WebSocket frame; numbers as plain decimals):
-//   start                            reset the episode and start the clock (a new drive)
+//   start                            reset the episode and start the clock (a new drive; refused
+//                                    while one is running)
 //   command THROTTLE STEERING BRAKING   held from the next control period on; ranges as
 //                                    controllers::Command: [0,1], [-1,1] (+ = left), [0,1]
 //   stop                             end the drive now (its outcome as it stands)

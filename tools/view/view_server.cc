@@ -106,6 +106,7 @@ std::string Route(const ServerConfig& cfg, const HttpRequest& request) {
 
 struct Connection {
   int fd = -1;
+  double opened_s = 0.0;
   std::string in;
   std::string out;
   bool websocket = false;
@@ -182,6 +183,7 @@ void ViewServer::Impl::Accept() {
     ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) | O_NONBLOCK);
     Connection c;
     c.fd = fd;
+    c.opened_s = NowSeconds();
     connections.push_back(std::move(c));
   }
 }
@@ -340,9 +342,14 @@ void ViewServer::Run() {
         }
       }
     }
-    // Close finished connections.
+    // Close finished and idle connections.
+    const double now = NowSeconds();
     for (size_t i = 0; i < m.connections.size();) {
       Connection& c = m.connections[i];
+      if (!c.websocket && !c.close_after_write && now - c.opened_s > m.config.http_idle_limit_s) {
+        c.close_after_write = true;
+        c.out.clear();
+      }
       if (c.close_after_write && c.out.empty()) {
         if (c.fd == m.driver_fd) {
           // The driver left: end the drive so that it is recorded, not driven on blindly.

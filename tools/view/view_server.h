@@ -37,6 +37,9 @@ struct ServerConfig {
   std::function<std::string(runner::TrialResult&&)> record_drive;
   int exit_after_drives = 0;       // > 0: stop after that many recorded drives (tests)
   double state_period_s = 1.0 / 30.0;   // live state messages to the page
+  // An HTTP connection without a whole request after this long is closed (a stuck or idle
+  // client must not hold the server's attention forever). WebSocket connections are exempt.
+  double http_idle_limit_s = 10.0;
 };
 
 class ViewServer {
