@@ -270,8 +270,11 @@ def main():
             # Load time = from the page asking for the trial to its first frame drawn (what
             # grows with the trial: transfer, parsing, scene, plots, first render). Browser
             # start-up, module loading and WebGL set-up come before and are printed too.
+            # One warm-up load (the browser's first compile of the page's shaders and scripts),
+            # then the median of 5: this machine is shared, single loads are noisy.
+            load(browser, f"{page}?result={long_stem}.json")
             load_ms, ready_ms = [], []
-            for _ in range(3):
+            for _ in range(5):
                 state = json.loads(load(browser, f"{page}?result={long_stem}.json"))
                 expect(state["error"] is None, state["error"])
                 expect(state["samples"] == long_n == 12000, state["samples"])
@@ -279,10 +282,10 @@ def main():
                 load_ms.append(state["trialLoadMs"])
                 ready_ms.append(state["readyMs"])
                 print(f"  stages (ms since navigation): {state['timings']}, ready {state['readyMs']:.0f}")
-            median = sorted(load_ms)[1]
-            print(f"  60 s trial, 12000 samples: loaded in {median:.0f} ms (median of 3: "
+            median = sorted(load_ms)[2]
+            print(f"  60 s trial, 12000 samples: loaded in {median:.0f} ms (median of 5: "
                   f"{', '.join(f'{t:.0f}' for t in load_ms)}); page ready "
-                  f"{sorted(ready_ms)[1]:.0f} ms after navigation")
+                  f"{sorted(ready_ms)[2]:.0f} ms after navigation")
             expect(median < 2000, f"load took {median} ms")
         checks.run("60 s full-rate trial (12000 samples) loads in under 2 s", long_trial_loads_fast)
 

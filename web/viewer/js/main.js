@@ -308,9 +308,14 @@ async function main() {
   const started = performance.now();
   hook.timings.script_started = Math.round(started);
   const params = new URLSearchParams(window.location.search);
-  const view = new View($('scene'));
-  hook.timings.renderer_created = Math.round(performance.now());
+  let view = null;
   try {
+    try {
+      view = new View($('scene'));
+    } catch (e) {
+      throw new TrialError(`this browser cannot draw 3-D (WebGL): ${e.message}`);
+    }
+    hook.timings.renderer_created = Math.round(performance.now());
     if (params.has('teleop')) {
       hook.mode = 'teleop';
       const bundle = await fetchJson('/api/scene');
@@ -337,7 +342,7 @@ async function main() {
     hook.ready = true;
   } catch (e) {
     showError(e instanceof TrialError ? e.message : `internal error: ${e.stack ?? e}`);
-    view.render();
+    if (view !== null) view.render();
     hook.ready = true;
   }
 }

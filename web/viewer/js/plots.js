@@ -22,7 +22,7 @@ export class Plot {
     this.tMax = 1;
     this.background = null;
     const seek = (ev) => {
-      if (!onSeek || !(ev.buttons & 1) && ev.type !== 'click') return;
+      if (!onSeek || (ev.type !== 'click' && !(ev.buttons & 1))) return;
       const rect = this.canvas.getBoundingClientRect();
       onSeek(((ev.clientX - rect.left) / rect.width) * this.tMax);
     };
