@@ -39,7 +39,8 @@ TEST(HttpTest, RejectsMalformedRequests) {
   EXPECT_EQ(ParseHttpRequest("GET /a%zz HTTP/1.1\r\n\r\n", &r, &error), HttpParse::kBad);
   EXPECT_NE(error.find("percent"), std::string::npos);
   EXPECT_EQ(ParseHttpRequest("GET /a?x=%4 HTTP/1.1\r\n\r\n", &r, &error), HttpParse::kBad);
-  EXPECT_EQ(ParseHttpRequest("GET / HTTP/1.1\r\nno colon here\r\n\r\n", &r, &error), HttpParse::kBad);
+  EXPECT_EQ(ParseHttpRequest("GET / HTTP/1.1\r\nno colon here\r\n\r\n", &r, &error),
+            HttpParse::kBad);
   EXPECT_NE(error.find("header"), std::string::npos);
   // A head that never ends is an error once it passes the limit, not a wait forever.
   EXPECT_EQ(ParseHttpRequest("GET / HTTP/1.1\r\nX: " + std::string(kMaxRequestHeadBytes, 'a'), &r,

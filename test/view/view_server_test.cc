@@ -44,7 +44,8 @@ void WriteText(const fs::path& path, const std::string& text) {
 HttpRequest Get(const std::string& target) {
   HttpRequest r;
   std::string error;
-  const HttpParse p = ParseHttpRequest("GET " + target + " HTTP/1.1\r\nHost: x\r\n\r\n", &r, &error);
+  const HttpParse p =
+      ParseHttpRequest("GET " + target + " HTTP/1.1\r\nHost: x\r\n\r\n", &r, &error);
   EXPECT_EQ(p, HttpParse::kRequest) << error;
   return r;
 }
@@ -124,7 +125,8 @@ TEST_F(ViewServerTest, TrialBundleCarriesSceneAndTrialFiles) {
   const std::string b = Body(r);
   EXPECT_EQ(b.rfind("{\"format\": \"vb-viewer\", \"version\": 1, \"pair\": 1,", 0), 0u);
   EXPECT_NE(b.find("\"name\": \"env042\""), std::string::npos);
-  EXPECT_NE(b.find("\"heights\": {\"rows\": 129, \"cols\": 129, \"values_m\": ["), std::string::npos);
+  EXPECT_NE(b.find("\"heights\": {\"rows\": 129, \"cols\": 129, \"values_m\": ["),
+            std::string::npos);
   EXPECT_NE(b.find("\"semantics\": {\"rows\": 16, \"cols\": 16"), std::string::npos);
   EXPECT_NE(b.find("{\"kind\": \"rock\", \"min_m\": ["), std::string::npos);
   EXPECT_NE(b.find("\"goal_radius_m\": 10"), std::string::npos);
@@ -220,7 +222,8 @@ TEST_F(ViewServerTest, CachedWorldIsReloadedWhenItsFileChanges) {
     TrialBundleJson(record, options);
     FAIL() << "an edited world must not be served from the cache";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("does not match the trial"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("does not match the trial"), std::string::npos)
+        << e.what();
   }
 }
 

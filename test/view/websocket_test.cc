@@ -97,7 +97,8 @@ TEST(WebSocketTest, RejectsBadClientFrames) {
                               &used, &error),
             WsDecode::kBad);
   // Oversized payload: rejected from the header alone, before the bytes arrive.
-  const std::string big = EncodeClientFrame(WsOpcode::kText, std::string(kMaxClientPayloadBytes + 1, 'z'), 7);
+  const std::string big =
+      EncodeClientFrame(WsOpcode::kText, std::string(kMaxClientPayloadBytes + 1, 'z'), 7);
   EXPECT_EQ(DecodeClientFrame(big.substr(0, 16), &f, &used, &error), WsDecode::kBad);
   EXPECT_NE(error.find("exceeds"), std::string::npos);
 }

@@ -48,8 +48,8 @@ std::string TrialsPage(const std::vector<vb::batch::TrialRow>& rows) {
       std::to_string(rows.size()) +
       " trials. The links open the 3-D replay; they work when this directory is served with "
       "<code>vb_view serve DIR</code> (DIR: the batch directory).</p>\n<table>\n<tr><th>trial"
-      "</th><th>task</th><th>pair</th><th>seed</th><th>vehicle</th><th>system</th><th>status"
-      "</th><th>traversal time (s)</th><th>simulated (s)</th></tr>\n";
+      "</th><th>task</th><th>pair</th><th>seed</th><th>vehicle</th><th>system</th>"
+      "<th>perception</th><th>status</th><th>traversal time (s)</th><th>simulated (s)</th></tr>\n";
   for (const vb::batch::TrialRow& r : rows) {
     const std::string stem = Html(Stem(r));
     const std::string name =
@@ -58,7 +58,8 @@ std::string TrialsPage(const std::vector<vb::batch::TrialRow>& rows) {
             : stem;
     h += "<tr><td>" + name + "</td><td>" + Html(r.task) + "</td><td>" + std::to_string(r.pair) +
          "</td><td>" + std::to_string(r.seed) + "</td><td>" + Html(r.vehicle) + "</td><td>" +
-         Html(r.system) + "</td><td>" + Html(r.status) + "</td><td>" +
+         Html(r.system) + "</td><td>" + Html(r.perception.empty() ? "none" : r.perception) +
+         "</td><td>" + Html(r.status) + "</td><td>" +
          Seconds(r.traversal_time_s) + "</td><td>" + Seconds(r.sim_time_s) + "</td></tr>\n";
   }
   return h + "</table>\n</body>\n</html>\n";

@@ -107,8 +107,8 @@ Options ParseArgs(int argc, char** argv) {
   if (o.help) return o;
   if (o.mode.empty()) o.mode = "replay";
   if (o.input.empty()) {
-    throw vb::InputError("", 0, o.mode == "replay" ? "RESULT.json" : o.mode == "serve" ? "DIR" : "TASK",
-                         "missing (see --help)");
+    const char* what = o.mode == "replay" ? "RESULT.json" : o.mode == "serve" ? "DIR" : "TASK";
+    throw vb::InputError("", 0, what, "missing (see --help)");
   }
   if (o.mode == "teleop" && o.vehicle.empty()) {
     throw vb::InputError("", 0, "--vehicle", "required for teleop (see --help)");
@@ -146,8 +146,9 @@ int Serve(vb::view::ServerConfig& config, const Options& o) {
   g_server = &server;
   std::signal(SIGINT, OnSignal);
   std::signal(SIGTERM, OnSignal);
-  const std::string url = "http://127.0.0.1:" + std::to_string(server.port()) +
-                          (config.start_location.empty() ? "/viewer/index.html" : config.start_location);
+  const std::string page =
+      config.start_location.empty() ? "/viewer/index.html" : config.start_location;
+  const std::string url = "http://127.0.0.1:" + std::to_string(server.port()) + page;
   std::printf("vb_view: serving %s\n", url.c_str());
   std::fflush(stdout);
   if (o.open) {
@@ -197,8 +198,9 @@ int Run(const Options& o) {
   const vb::terrain::TaskSpec task = vb::io::LoadTask(o.input);
   const std::vector<std::string> vehicles = vb::io::VehicleNames(data_dir);
   if (std::find(vehicles.begin(), vehicles.end(), o.vehicle) == vehicles.end()) {
-    throw vb::InputError("", 0, "--vehicle", "unknown vehicle '" + o.vehicle + "' in " + data_dir +
-                                                 "/vehicles; valid: " + vb::io::JoinNames(vehicles));
+    throw vb::InputError("", 0, "--vehicle",
+                         "unknown vehicle '" + o.vehicle + "' in " + data_dir +
+                             "/vehicles; valid: " + vb::io::JoinNames(vehicles));
   }
   const std::string vehicle_file = data_dir + "/vehicles/" + o.vehicle + ".yaml";
   const vb::vehicles::VehicleParams params = vb::io::LoadVehicle(vehicle_file);
@@ -224,7 +226,9 @@ int Run(const Options& o) {
     const fs::path dir = fs::path(o.out_dir) / dir_name;
     std::error_code mk;
     fs::create_directories(dir, mk);
-    if (mk) throw vb::InputError(dir.string(), 0, "--out", "cannot create directory: " + mk.message());
+    if (mk) {
+      throw vb::InputError(dir.string(), 0, "--out", "cannot create directory: " + mk.message());
+    }
     vb::io::Provenance provenance = vb::io::MakeProvenance(task, result.spec);
     vb::io::RecordParameterFiles(vehicle_file, o.soil, soil ? soil_file : "", &provenance);
     const std::string stem = vb::io::TrialFileStem(result);

@@ -103,7 +103,8 @@ const SceneCache::Task& FindTask(const std::string& result_path, const batch::Tr
     if (!row.task_fnv1a64.empty() && hash != row.task_fnv1a64) {
       if (mismatch.empty()) {
         mismatch = "task file " + path + " does not match the trial: its FNV-1a is " + hash +
-                   ", the trial ran on " + row.task_fnv1a64 + " (the world was edited or regenerated)";
+                   ", the trial ran on " + row.task_fnv1a64 +
+                   " (the world was edited or regenerated)";
       }
       continue;
     }
