@@ -25,6 +25,7 @@ packages=(
   libgtest-dev                   # tests
   python3 python3-venv           # the Python package's virtual environment (.venv)
   nlohmann-json3-dev             # vb_gym protocol headers (JSON)
+  chromium                       # headless-browser tests of the 3-D viewer (docs/viewer.md)
 )
 if [ "$fuzz" -eq 1 ]; then
   packages+=(clang libclang-rt-14-dev)   # Debian 12's clang 14 with -fsanitize=fuzzer
