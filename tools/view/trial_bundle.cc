@@ -42,6 +42,9 @@ std::string JsonText(const std::string& text) {
   size_t run = 0;
   for (size_t i = 0; i < text.size(); ++i) {
     const unsigned char c = static_cast<unsigned char>(text[i]);
+    // Non-ASCII text (rare: trial files are ASCII) goes through JsonString, which also replaces
+    // bytes that are not well-formed UTF-8 (docs/reliability.md, DEF-7).
+    if (c >= 0x80) return io::JsonString(text);
     if (c >= 0x20 && c != '"' && c != '\\') continue;
     out.append(text, run, i - run);
     const std::string escaped = io::JsonString(std::string(1, static_cast<char>(c)));
