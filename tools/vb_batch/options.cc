@@ -18,6 +18,8 @@ matrix:
   --pairs all|LIST     start/goal pairs, e.g. 0,3,5-9 (default: all pairs of each task)
   --vehicles LIST|all  vehicles from $VB_DATA_DIR/vehicles (default: hmmwv)
   --systems LIST|all   mobility systems (default: pid)
+  --perception LIST    perception presets, e.g. none,mild,moderate,severe (default: none, ground
+                       truth); a preset of $VB_DATA_DIR/perception/ (docs/perception.md)
   --seeds LIST         trial seeds, e.g. 0-4 (default: 0)
   --scale LIST         keep only tasks whose world scale is listed, e.g. 1,0.1 (default: all)
 execution:
@@ -35,7 +37,8 @@ execution:
   --quiet              no per-trial lines or progress bar, only the summary
   --help               this text
 
-outputs in DIR: trials/<task>_p<K>_s<seed>_<vehicle>_<system>.json and _traj.csv per trial,
+outputs in DIR: trials/<task>_p<K>_s<seed>_<vehicle>_<system>[_perc-<preset>].json and _traj.csv
+per trial,
 index.csv (one row per finished trial of this shard), batch.json (matrix and settings).
 Trial status: success, rollover, stuck, timeout, sim_error, out_of_bounds (the runner's), error
 (trial could not be set up, e.g. a task file that does not load) or crashed (worker died;
@@ -76,6 +79,8 @@ Options ParseArgs(int argc, char** argv) {
       o.pairs = args.Value();
     } else if (a == "--vehicles") {
       o.vehicles = args.Value();
+    } else if (a == "--perception") {
+      o.perception = args.Value();
     } else if (a == "--systems") {
       o.systems = args.Value();
     } else if (a == "--seeds") {
