@@ -224,7 +224,7 @@ WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
   if (depth <= 0.0) return out;  // above the soil
   const double half_len = depth >= r ? r : std::sqrt(depth * (2.0 * r - depth));
   const Vec3 lat_h = Vec3::UnitZ().cross(fwd);
-  const double half_lat = half_w + r * std::abs(a.z());
+  const double half_lat = half_w + 0.5 * m.dx + r * std::abs(a.z());
   const double ex = std::abs(fwd.x()) * half_len + std::abs(lat_h.x()) * half_lat;
   const double ey = std::abs(fwd.y()) * half_len + std::abs(lat_h.y()) * half_lat;
   const int i_lo = static_cast<int>(std::ceil((c.x() - ex) / m.dx));
@@ -237,12 +237,16 @@ WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
   for (int j = j_lo; j <= j_hi; ++j) {
     for (int i = i_lo; i <= i_hi; ++i) {
       double hit_z = 0.0, lat = 0.0;
-      if (!WheelBottomAt(c, a, r, half_w, i * m.dx, j * m.dx, &hit_z, &lat)) continue;
-      const double ux = i * m.dx - c.x(), uy = j * m.dx - c.y();
-      // Only nodes whose vertical line meets the tread are pressed. The outermost columns carry
-      // the share of their cell the tread covers (>= 1/2), so the effective width follows the
-      // wheel's between grid positions instead of jumping by whole cells.
+      // Nodes whose cell (+-dx/2 across) overlaps the tread are pressed, each carrying the share
+      // of its cell the tread covers, so the effective width is the wheel's (sum of covers x dx
+      // = width) wherever the wheel stands between grid columns. A node just beyond the tread
+      // edge takes the cylinder's height there (the tread edge, extended by < dx/2).
+      if (!WheelBottomAt(c, a, r, half_w + 0.5 * m.dx, i * m.dx, j * m.dx, &hit_z, &lat)) {
+        continue;
+      }
       const double cover = std::min(1.0, (half_w - std::abs(lat)) / m.dx + 0.5);
+      if (!(cover > 0.0)) continue;
+      const double ux = i * m.dx - c.x(), uy = j * m.dx - c.y();
       Node* n = m.At(i, j, true);
       if (n == nullptr || n->slot < 0) continue;
       if (hit_z >= Level(*n)) continue;
@@ -301,9 +305,16 @@ WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
     nw /= nw.norm();
     const Vec3 v = wheel.velocity_W + wheel.angular_velocity_W.cross(w);
     const double vn = v.dot(nw);  // < 0: the wheel surface moves into the soil
-    const double sigma_n = std::max(0.0, sigma - s.damping_paspm * c_scale * vn);
     // The horizontal cell under the node carries the wheel surface of area cell / cos.
     const double area = cell * h.cover / std::max(kMinCos, nw.z());
+    // Viscous damping resists the soil's compression, i.e. motion along the terrain normal
+    // (Chrono: sigma += -R Vn with Vn along the undeformed normal, reference §2.3), on the cell
+    // the node stands for. Along the wheel's radial normal it would act on the front arc as a
+    // drag proportional to the travel speed (~1 kN per HMMWV wheel in snow at 4 m/s) that a
+    // rolling wheel does not feel from the soil's compression rate. Never pulls the wheel down:
+    // at most cancels the elastic-plastic pressure (as the clamp of the total stress at 0 did).
+    const double vn_terrain = v.dot(under.normal_W);
+    const double sigma_damp = std::max(-sigma, -s.damping_paspm * c_scale * vn_terrain);
     // Shear: the shear displacement restarts when a node enters contact afresh.
     if (n.contact_step < m.step - 1) n.shear_m.setZero();
     const Vec3 vt = v - vn * nw;
@@ -315,9 +326,10 @@ WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
       n.shear_m *= jmax / j_len;
       j_len = jmax;
     }
-    Vec3 f = sigma_n * area * nw;
+    Vec3 f = sigma * area * nw + sigma_damp * cell * h.cover * under.normal_W;
     if (j_len > 0.0) {
-      const double tau_max = s.cohesion_pa + sigma * std::tan(s.friction_angle_rad);
+      // Mohr-Coulomb on the total normal stress, damping included (Chrono's order, §2.3).
+      const double tau_max = s.cohesion_pa + (sigma + sigma_damp) * std::tan(s.friction_angle_rad);
       const double tau = tau_max * (1.0 - std::exp(-j_len / s.janosi_shear_m));
       f -= (tau * area / j_len) * n.shear_m;
     }

@@ -186,7 +186,9 @@ TEST(SoilTurningValidation, SideForceVsSlipAngleMatchesWong) {
 // v_side = v sin(a), v_slip = v cos(a) s / (1 - s) (sand's cohesion adds ~40 N): at s = 0.8 that
 // is 4 % of the limit. Asserted: the side force falls with drive slip; at s = 0.8 it is below
 // 0.2 x its free-rolling value and within 30 % of the estimate (measured sand -6 %, mud -14 %,
-// snow -26 %: the front of the patch is not yet fully sheared).
+// snow -26 %: the front of the patch is not yet fully sheared). At every drive slip of the sweep
+// 0 ... 0.95 the side force keeps its sign (it opposes the side slip: a spinning wheel never pushes
+// the vehicle the other way, which would reverse the steering).
 TEST(SoilTurningValidation, DriveSlipTakesTheSideForce) {
   const SoilConfig config =
       io::LoadSoil(std::string(VB_SOURCE_DIR) + "/data/soils/verti_bench.yaml");
@@ -194,7 +196,7 @@ TEST(SoilTurningValidation, DriveSlipTakesTheSideForce) {
   for (SurfaceClass surface : {SurfaceClass::kSand, SurfaceClass::kMud, SurfaceClass::kSnow}) {
     const SoilParams& s = *config.For(surface);
     double previous = 1e9, free_rolling = 0.0;
-    for (double slip : {0.0, 0.4, 0.8}) {
+    for (double slip : {0.0, 0.2, 0.4, 0.6, 0.8, 0.95}) {
       WheelRigSpec spec;
       spec.soil = surface;
       spec.slip_angle_rad = alpha;
@@ -207,6 +209,7 @@ TEST(SoilTurningValidation, DriveSlipTakesTheSideForce) {
                   "estimate %5.0f N), pull %5.0f N\n",
                   Name(surface), slip, r.lateral_force_n, estimate, r.drawbar_pull_n);
       EXPECT_LT(r.lateral_force_n, previous) << Name(surface) << " " << slip;
+      EXPECT_GT(r.lateral_force_n, 0.0) << Name(surface) << " " << slip;
       if (slip == 0.0) free_rolling = r.lateral_force_n;
       if (slip == 0.8) {
         EXPECT_LT(r.lateral_force_n, 0.2 * free_rolling) << Name(surface);
@@ -236,36 +239,33 @@ TEST(SoilTurningValidation, SandAndMudTurnLikeRigidGround) {
   }
 }
 
-// Snow (sinkage 0.1-0.18 m): low cornering stiffness (the rig's snow side force at 5 deg is a
-// third of Wong's), further cut by the 0.35-0.5 drive slip the wheels need against snow's
-// compaction resistance (one isotropic Mohr-Coulomb limit per node, shear along the slip
-// velocity: the longitudinal shear takes most of it). So the radius grows with lateral
-// acceleration (understeer on soil):
-//  - 1 m/s (a_y <= 0.1 m/s^2): the rigid circle within 10 % (measured +4 / +7 %).
-//  - 2 m/s (a_y 0.2 m/s^2): runs wide, R 1.2 ... 2.5 x rigid (measured 1.3 x at steering 0.5,
-//    1.8 x at full lock); the soil force towards the centre still equals m v^2 / R within 5 %.
-//  - 3 m/s asked (the speed controller stays at full throttle): the wheels spin (slip > 0.8),
-//    the side force collapses and at full lock the vehicle ploughs almost straight (R > 4 x
-//    rigid): a spinning wheel has no lateral grip left. A PID at full throttle meets this on snow.
-TEST(SoilTurningValidation, SnowTurnsWideWhenTheDriveUsesTheFriction) {
+// Snow (sinkage ~0.12 m at speed): lower cornering stiffness than sand and mud (the rig's snow
+// side force at 5 deg is a third of Wong's), so the circle widens a little with lateral
+// acceleration, but the drive needs little slip since the damping acts along the terrain normal
+// (issue 11; before, a front-arc drag of ~1 kN per wheel kept the drive slip at 0.3-0.5 and the
+// wheels spun at 3 m/s, R > 4 x rigid). Asserted: at 1, 2 and 3 m/s, steering 0.5 and full lock,
+// R within 10 % of rigid, growing with speed at full lock; at 2 m/s the soil force towards the
+// centre equals m v^2 / R within 5 %.
+TEST(SoilTurningValidation, SnowTurnsNearlyLikeRigidGround) {
   for (double steering : {0.5, 1.0}) {
     const Circle rigid = SteadyTurn(SurfaceClass::kConcrete, steering, 1.0, 12.0, 2.0);
-    const Circle slow = SteadyTurn(SurfaceClass::kSnow, steering, 1.0, 12.0, 2.0);
-    const Circle medium = SteadyTurn(SurfaceClass::kSnow, steering, 2.0, 12.0, 2.0);
     Print("rigid 1 m/s", SurfaceClass::kConcrete, steering, rigid);
-    Print("1 m/s", SurfaceClass::kSnow, steering, slow);
-    Print("2 m/s", SurfaceClass::kSnow, steering, medium);
-    EXPECT_NEAR(slow.radius_m, rigid.radius_m, 0.10 * rigid.radius_m);
-    EXPECT_GT(medium.radius_m, 1.2 * rigid.radius_m);
-    EXPECT_LT(medium.radius_m, 2.5 * rigid.radius_m);
-    EXPECT_NEAR(medium.soil_inward_n, medium.centripetal_n, 0.05 * medium.centripetal_n);
-    EXPECT_GT(medium.radius_m, slow.radius_m);
+    double previous = 0.0;
+    for (double speed : {1.0, 2.0, 3.0}) {
+      const Circle c = SteadyTurn(SurfaceClass::kSnow, steering, speed, 12.0, 2.0);
+      char label[32];
+      std::snprintf(label, sizeof(label), "%.0f m/s", speed);
+      Print(label, SurfaceClass::kSnow, steering, c);
+      EXPECT_NEAR(c.radius_m, rigid.radius_m, 0.10 * rigid.radius_m) << speed;
+      if (steering == 1.0) {
+        EXPECT_GT(c.radius_m, previous - 0.01) << speed;
+      }
+      if (speed == 2.0) {
+        EXPECT_NEAR(c.soil_inward_n, c.centripetal_n, 0.05 * c.centripetal_n);
+      }
+      previous = c.radius_m;
+    }
   }
-  const Circle rigid = SteadyTurn(SurfaceClass::kConcrete, 1.0, 3.0, 10.0, 2.0);
-  const Circle fast = SteadyTurn(SurfaceClass::kSnow, 1.0, 3.0, 10.0, 2.0);
-  Print("3 m/s asked", SurfaceClass::kSnow, 1.0, fast);
-  EXPECT_GT(fast.drive_slip, 0.8);
-  EXPECT_GT(fast.radius_m, 4.0 * rigid.radius_m);
 }
 
 }  // namespace

@@ -1,12 +1,16 @@
 // Rigid-tire / rigid-ground contact owned by vb (not Bullet): the tire is a cylinder (radius,
-// width); its lowest generatrix relative to the local terrain plane gives a line load whose
-// resultant is one contact point per wheel (tread centre on level contact, moving towards the
-// lower tread edge when the wheel is tilted against the ground, e.g. on a tilt table).
+// width) against the triangulated terrain surface. Five circles across the tread are intersected
+// with the surface in the wheel's plane; every face or convex corner of that section inside a
+// circle is a contact with its own normal and penetration (so the wheel feels a rising face or a
+// step's edge ahead of its lowest point, as a cylinder against the triangles does), and their
+// penalty forces are summed into one resultant contact per wheel (tread centre on even ground,
+// towards the lower tread edge when the wheel is tilted against the ground, e.g. on a tilt
+// table; tilted back towards the wheel centre at a step).
 //  - Normal: penalty spring-damper on the penetration, never pulling.
 //  - Tangential: an elastic bristle (stick state) with damping, limited by Coulomb
-//    |Ft| <= mu*Fn with mu = min(tire mu, patch mu) (Chrono's NSC composition). The bristle holds
-//    static loads exactly, so a braked vehicle on a slope below atan(mu) does not creep, which a
-//    velocity-regularised Coulomb law cannot do.
+//    |Ft| <= mu*Fn with mu = min(tire mu, patch mu) (Chrono's NSC composition; the patch mu is the
+//    contacts' force-weighted mean). The bristle holds static loads exactly, so a braked vehicle
+//    on a slope below atan(mu) does not creep, which a velocity-regularised Coulomb law cannot do.
 #pragma once
 
 #include "vb/engine/types.h"
@@ -18,15 +22,16 @@ namespace vb::vehicles {
 // Where the wheel touches the ground (geometry only).
 struct ContactGeometry {
   bool in_contact = false;
-  Vec3 point_W = Vec3::Zero();      // resultant of the line load on the lowest generatrix
-  Vec3 normal_W = Vec3::UnitZ();    // terrain normal there
-  double penetration_m = 0.0;       // along the normal, > 0 when in contact
+  Vec3 point_W = Vec3::Zero();      // on the tread: force-weighted centroid of the contacts
+  Vec3 normal_W = Vec3::UnitZ();    // direction of the contacts' summed penalty force
+  double penetration_m = 0.0;       // equivalent: |summed force| / stiffness, > 0 in contact
   terrain::SurfaceClass surface = terrain::SurfaceClass::kDirt;
   double patch_friction = 0.0;
 };
 
 // Finds the contact of a cylinder of radius r and width w with centre c_W and spin axis axis_W
-// (unit). penetration_m is the mean penetration over the width (normal force = k * mean).
+// (unit). On even ground penetration_m is the mean penetration over the width (normal force =
+// k * mean); with several contacts, the resultant of their penalty forces. Allocates nothing.
 ContactGeometry FindWheelContact(const terrain::Terrain& terrain, const Vec3& c_W,
                                  const Vec3& axis_W, double radius_m, double width_m);
 
