@@ -304,8 +304,9 @@ TEST_F(VehicleIoTest, ErrorSteeringTravelTheLinkageCannotFollow) {
   const size_t at = text.find(from);
   ASSERT_NE(at, std::string::npos);
   text.replace(at, from.size(), "max_pinion_angle_rad: 1.5707");
+  const int line = 1 + static_cast<int>(std::count(text.begin(), text.begin() + at, '\n'));
   const std::string file = WriteText("wide.yaml", text);
-  test::ExpectInputError([&] { LoadVehicle(file); }, file, 120, "steering.max_pinion_angle_rad",
+  test::ExpectInputError([&] { LoadVehicle(file); }, file, line, "steering.max_pinion_angle_rad",
                          "the steering linkage does not assemble");
 }
 
