@@ -22,14 +22,18 @@ void BicycleModel::Step(int /*step*/, const PlannerState* states, const MppiCont
   for (int k = 0; k < count; ++k) {
     const PlannerState& s = states[k];
     const double ds = step_per_speed * controls[k][kMppiSpeed];
-    const double dyaw = ds / wheelbase *
-                        std::tan(params_.wheel_angle_per_steer_rad * controls[k][kMppiSteer]);
+    // Trigonometry in single precision: it is most of a rollout's cost (16,000 steps per MPPI
+    // update) and float's 1e-7 relative error is micrometres on a 10 m horizon.
+    const double dyaw =
+        ds / wheelbase *
+        std::tan(static_cast<float>(params_.wheel_angle_per_steer_rad * controls[k][kMppiSteer]));
     const double direction =
         params_.original_step_direction ? s.yaw_rad + dyaw / kOriginalYawScale : s.yaw_rad + 0.5 * dyaw;
+    const float direction_f = static_cast<float>(direction);   // |direction| < 10 rad here
     PlannerState& n = next[k];
     n = s;
-    n.x_m = s.x_m + ds * std::cos(direction);
-    n.y_m = s.y_m + ds * std::sin(direction);
+    n.x_m = s.x_m + ds * std::cos(direction_f);
+    n.y_m = s.y_m + ds * std::sin(direction_f);
     n.yaw_rad = s.yaw_rad + dyaw;
   }
 }
