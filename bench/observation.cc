@@ -4,6 +4,8 @@
 // 64 x 64 elevation at 0.1 m; a rich one: 64 x 64 elevation, semantics, friction, occupancy).
 // The vehicle states are those of a real PID trial (pair 0), so replanning happens at its 10 Hz
 // cadence as in an episode. Median over 5 runs of the mean cost per observation.
+// Each configuration is measured with ground truth and with the `moderate` perception preset
+// (docs/perception.md: pose errors, map errors and holes, confusion, perceived obstacles).
 //   usage: vb_bench_observation [TASK]
 #include <algorithm>
 #include <chrono>
@@ -12,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "io/perception_io.h"
 #include "io/soil_io.h"
 #include "io/task_io.h"
 #include "io/vehicle_io.h"
@@ -67,21 +70,31 @@ int main(int argc, char** argv) {
       terrain::Inflate(terrain::RasterizeObstacles(task), terrain::PlannerInflationCells(task));
   std::printf("vb_bench_observation %s: %zu states of pair 0 (%.1f s simulated)\n",
               task_path.c_str(), states.size(), times.back());
+  const runner::PerceptionParams moderate =
+      io::ResolvePerception("moderate", VB_SOURCE_DIR "/data");
   for (const Config& c : configs) {
     controllers::ObservationConfig oc;
     oc.crops = c.crops;
-    std::vector<double> per_call_us;
-    for (int run = 0; run < 5; ++run) {
-      runner::ObservationBuilder builder(maps, grid, task.scale);
-      builder.SetConfig(oc);
-      builder.Reset(task.pairs[0].goal_m);
-      controllers::Observation obs;
-      const auto t0 = std::chrono::steady_clock::now();
-      for (size_t i = 0; i < states.size(); ++i) builder.Build(times[i], states[i], &obs);
-      const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      per_call_us.push_back(1e6 * s / static_cast<double>(states.size()));
+    for (const runner::PerceptionParams& perception : {runner::PerceptionParams(), moderate}) {
+      std::vector<double> per_call_us;
+      for (int run = 0; run < 5; ++run) {
+        runner::ObservationBuilder builder(maps, grid, task.scale);
+        builder.SetConfig(oc);
+        builder.SetPerception(perception, 0.005);
+        builder.Reset(task.pairs[0].goal_m, 0, task);
+        controllers::Observation obs;
+        const auto t0 = std::chrono::steady_clock::now();
+        for (size_t i = 0; i < states.size(); ++i) {
+          if (perception.Enabled()) builder.Record(static_cast<long>(i), states[i]);
+          builder.Build(static_cast<long>(i), times[i], states[i], &obs);
+        }
+        const double s =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        per_call_us.push_back(1e6 * s / static_cast<double>(states.size()));
+      }
+      std::printf("  %-52s %-8s %8.2f us per observation (median of 5 runs)\n", c.name,
+                  perception.name.c_str(), Median(per_call_us));
     }
-    std::printf("  %-52s %8.2f us per observation (median of 5 runs)\n", c.name, Median(per_call_us));
   }
   return 0;
 }

@@ -78,7 +78,11 @@ std::string StatsCsv(const GroupStats& s) {
 
 }  // namespace
 
-std::string SystemLabel(const TrialRow& row) { return row.system + "/" + row.vehicle; }
+std::string SystemLabel(const TrialRow& row) {
+  std::string label = row.system + "/" + row.vehicle;
+  if (!row.perception.empty() && row.perception != "none") label += "/perception:" + row.perception;
+  return label;
+}
 
 const std::vector<std::string>& FactorNames() {
   static const std::vector<std::string> kNames = {"elevation", "terrain", "density"};
@@ -155,7 +159,44 @@ Report BuildReport(const std::vector<TrialRow>& rows) {
       }
     }
   }
+
+  // Robustness: success per system per perception preset.
+  const bool any_perception = std::any_of(rows.begin(), rows.end(), [](const TrialRow& r) {
+    return !r.perception.empty() && r.perception != "none";
+  });
+  if (any_perception) {
+    std::vector<std::string> presets = {"none", "mild", "moderate", "severe"};
+    std::set<std::string> present, extra;
+    std::map<std::pair<std::string, std::string>, std::vector<const TrialRow*>> groups;
+    std::set<std::string> systems;
+    for (const TrialRow& r : rows) {
+      const std::string p = r.perception.empty() ? "none" : r.perception;
+      present.insert(p);
+      if (std::find(presets.begin(), presets.end(), p) == presets.end()) extra.insert(p);
+      const std::string system = r.system + "/" + r.vehicle;
+      systems.insert(system);
+      groups[{system, p}].push_back(&r);
+    }
+    presets.insert(presets.end(), extra.begin(), extra.end());
+    for (const std::string& p : presets) {
+      if (present.count(p) != 0) rep.perceptions.push_back(p);
+    }
+    rep.robustness_systems.assign(systems.begin(), systems.end());
+    for (const std::string& system : rep.robustness_systems) {
+      for (const std::string& p : rep.perceptions) {
+        rep.robustness.push_back({system, p, Aggregate(groups[{system, p}])});
+      }
+    }
+  }
   return rep;
+}
+
+std::string RobustnessCsv(const Report& report) {
+  std::string t = "system,perception," + StatsCsvHeader() + "\n";
+  for (const RobustnessRow& r : report.robustness) {
+    t += r.system + "," + r.perception + "," + StatsCsv(r.stats) + "\n";
+  }
+  return t;
 }
 
 std::string Table1Csv(const Report& report) {
@@ -190,6 +231,23 @@ std::string ReportMarkdown(const Report& report) {
          Cell(s.sim_error_pct, 1) + " | " + Cell(s.out_of_bounds_pct, 1) + " | " +
          std::to_string(s.error) + " | " +
          std::to_string(s.crashed) + " |\n";
+  }
+  if (!report.robustness.empty()) {
+    t += "\n## Robustness: success % per perception preset\n\n"
+         "Presets: docs/perception.md. Each cell: success % of the trials that ran (trials).\n\n";
+    t += "| system |";
+    for (const std::string& p : report.perceptions) t += " " + p + " |";
+    t += "\n|---|";
+    for (size_t i = 0; i < report.perceptions.size(); ++i) t += "---:|";
+    t += "\n";
+    for (const std::string& system : report.robustness_systems) {
+      t += "| " + system + " |";
+      for (const RobustnessRow& r : report.robustness) {
+        if (r.system != system) continue;
+        t += " " + Cell(r.stats.success_pct, 1) + " (" + std::to_string(r.stats.ran) + ") |";
+      }
+      t += "\n";
+    }
   }
   for (const std::string& factor : FactorNames()) {
     t += "\n## Fig. 6: by " + factor + "\n\n";

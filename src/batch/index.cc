@@ -3,6 +3,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstdint>
 #include <cstdlib>
 #include <limits>
 
@@ -14,7 +15,7 @@ namespace {
 
 const char* const kColumns[] = {
     "matrix_index", "task",       "pair",          "seed",       "vehicle",
-    "system",       "scale",      "elevation",     "terrain",    "density",
+    "system",       "perception", "scale",      "elevation",     "terrain",    "density",
     "status",       "traversal_time_s", "sim_time_s", "final_goal_distance_m",
     "mean_abs_roll_deg", "mean_abs_pitch_deg", "task_fnv1a64", "vb_version", "git_commit",
     "host",         "wall_time_s", "task_file",    "message"};
@@ -112,7 +113,11 @@ bool IsKnownStatus(const std::string& s) {
 
 std::string RowStem(const TrialRow& r) {
   return r.task + "_p" + std::to_string(r.pair) + "_s" + std::to_string(r.seed) + "_" +
-         r.vehicle + "_" + r.system;
+         r.vehicle + "_" + r.system + PerceptionStemSuffix(r.perception);
+}
+
+std::string PerceptionStemSuffix(const std::string& perception) {
+  return perception.empty() || perception == "none" ? std::string() : "_perc-" + perception;
 }
 
 std::string IndexCsv(const std::vector<TrialRow>& rows) {
@@ -122,7 +127,7 @@ std::string IndexCsv(const std::vector<TrialRow>& rows) {
   for (const TrialRow& r : rows) {
     text += std::to_string(r.matrix_index) + "," + Field(r.task) + "," + std::to_string(r.pair) +
             "," + std::to_string(r.seed) + "," + Field(r.vehicle) + "," + Field(r.system) + "," +
-            Num(r.scale) + "," + Field(r.elevation) + "," + Field(r.terrain) + "," +
+            Field(r.perception) + "," + Num(r.scale) + "," + Field(r.elevation) + "," + Field(r.terrain) + "," +
             Field(r.density) + "," + Field(r.status) + "," + Num(r.traversal_time_s) + "," +
             Num(r.sim_time_s) + "," + Num(r.final_goal_distance_m) + "," +
             Num(r.mean_abs_roll_deg) + "," + Num(r.mean_abs_pitch_deg) + "," +
@@ -137,54 +142,67 @@ std::vector<TrialRow> ParseIndexCsv(const std::string& text, const std::string& 
   const std::vector<Record> records = SplitCsv(text, source);
   if (records.empty()) throw InputError(source, 1, "", "empty index (no header)");
   const Record& header = records.front();
-  if (header.fields.size() != kNumColumns) {
-    throw InputError(source, 1, "", "header has " + std::to_string(header.fields.size()) +
-                                        " columns, expected " + std::to_string(kNumColumns));
+  // Columns by name, in the order of kColumns; "perception" may be missing (indexes written
+  // before perception models existed: ground truth).
+  size_t col[kNumColumns];
+  for (size_t i = 0; i < kNumColumns; ++i) col[i] = SIZE_MAX;
+  for (size_t j = 0; j < header.fields.size(); ++j) {
+    size_t i = 0;
+    while (i < kNumColumns && header.fields[j] != kColumns[i]) ++i;
+    if (i == kNumColumns) {
+      throw InputError(source, 1, header.fields[j], "unexpected column");
+    }
+    if (col[i] != SIZE_MAX) throw InputError(source, 1, header.fields[j], "duplicate column");
+    col[i] = j;
   }
   for (size_t i = 0; i < kNumColumns; ++i) {
-    if (header.fields[i] != kColumns[i]) {
-      throw InputError(source, 1, header.fields[i],
-                       std::string("unexpected column; expected '") + kColumns[i] + "'");
+    if (col[i] == SIZE_MAX && std::string(kColumns[i]) != "perception") {
+      throw InputError(source, 1, kColumns[i], "missing column");
     }
   }
+  const size_t width = header.fields.size();
   std::vector<TrialRow> rows;
   for (size_t i = 1; i < records.size(); ++i) {
     const Record& rec = records[i];
     if (rec.fields.size() == 1 && rec.fields[0].empty()) continue;  // blank line
-    if (rec.fields.size() != kNumColumns) {
+    if (rec.fields.size() != width) {
       throw InputError(source, rec.line, "", "row has " + std::to_string(rec.fields.size()) +
-                                                 " fields, expected " +
-                                                 std::to_string(kNumColumns));
+                                                 " fields, expected " + std::to_string(width));
     }
-    const std::vector<std::string>& f = rec.fields;
     const int ln = rec.line;
+    // Field of column kColumns[c] ("" for a missing optional column).
+    std::string none = "none";
+    auto f = [&](size_t c) -> const std::string& {
+      return col[c] == SIZE_MAX ? none : rec.fields[col[c]];
+    };
     TrialRow r;
-    r.matrix_index = ParseU64(f[0], source, ln, "matrix_index");
-    r.task = f[1];
-    r.pair = static_cast<int>(ParseU64(f[2], source, ln, "pair"));
-    r.seed = ParseU64(f[3], source, ln, "seed");
-    r.vehicle = f[4];
-    r.system = f[5];
-    r.scale = ParseDouble(f[6], source, ln, "scale");
-    r.elevation = f[7];
-    r.terrain = f[8];
-    r.density = f[9];
-    r.status = f[10];
+    r.matrix_index = ParseU64(f(0), source, ln, "matrix_index");
+    r.task = f(1);
+    r.pair = static_cast<int>(ParseU64(f(2), source, ln, "pair"));
+    r.seed = ParseU64(f(3), source, ln, "seed");
+    r.vehicle = f(4);
+    r.system = f(5);
+    r.perception = f(6);
+    r.scale = ParseDouble(f(7), source, ln, "scale");
+    r.elevation = f(8);
+    r.terrain = f(9);
+    r.density = f(10);
+    r.status = f(11);
     if (!IsKnownStatus(r.status)) {
       throw InputError(source, ln, "status", "unknown status '" + r.status + "'");
     }
-    r.traversal_time_s = ParseDouble(f[11], source, ln, "traversal_time_s");
-    r.sim_time_s = ParseDouble(f[12], source, ln, "sim_time_s");
-    r.final_goal_distance_m = ParseDouble(f[13], source, ln, "final_goal_distance_m");
-    r.mean_abs_roll_deg = ParseDouble(f[14], source, ln, "mean_abs_roll_deg");
-    r.mean_abs_pitch_deg = ParseDouble(f[15], source, ln, "mean_abs_pitch_deg");
-    r.task_fnv1a64 = f[16];
-    r.vb_version = f[17];
-    r.git_commit = f[18];
-    r.host = f[19];
-    r.wall_time_s = ParseDouble(f[20], source, ln, "wall_time_s");
-    r.task_file = f[21];
-    r.message = f[22];
+    r.traversal_time_s = ParseDouble(f(12), source, ln, "traversal_time_s");
+    r.sim_time_s = ParseDouble(f(13), source, ln, "sim_time_s");
+    r.final_goal_distance_m = ParseDouble(f(14), source, ln, "final_goal_distance_m");
+    r.mean_abs_roll_deg = ParseDouble(f(15), source, ln, "mean_abs_roll_deg");
+    r.mean_abs_pitch_deg = ParseDouble(f(16), source, ln, "mean_abs_pitch_deg");
+    r.task_fnv1a64 = f(17);
+    r.vb_version = f(18);
+    r.git_commit = f(19);
+    r.host = f(20);
+    r.wall_time_s = ParseDouble(f(21), source, ln, "wall_time_s");
+    r.task_file = f(22);
+    r.message = f(23);
     rows.push_back(std::move(r));
   }
   return rows;

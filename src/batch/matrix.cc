@@ -1,5 +1,7 @@
 #include "vb/batch/matrix.h"
 
+#include "vb/batch/index.h"
+
 #include <cerrno>
 #include <cinttypes>
 #include <cstdio>
@@ -41,6 +43,7 @@ std::vector<TrialKey> ExpandMatrix(const MatrixSpec& spec) {
   if (!spec.pairs.empty()) RequireUniqueNonEmpty(spec.pairs, "--pairs");
   RequireUniqueNonEmpty(spec.vehicles, "--vehicles");
   RequireUniqueNonEmpty(spec.systems, "--systems");
+  RequireUniqueNonEmpty(spec.perceptions, "--perception");
   RequireUniqueNonEmpty(spec.seeds, "--seeds");
 
   std::vector<TrialKey> trials;
@@ -54,15 +57,18 @@ std::vector<TrialKey> ExpandMatrix(const MatrixSpec& spec) {
     for (int pair : pairs) {
       for (const std::string& vehicle : spec.vehicles) {
         for (const std::string& system : spec.systems) {
-          for (uint64_t seed : spec.seeds) {
-            TrialKey key;
-            key.matrix_index = trials.size();
-            key.task_index = ti;
-            key.pair = pair;
-            key.vehicle = vehicle;
-            key.system = system;
-            key.seed = seed;
-            trials.push_back(std::move(key));
+          for (const std::string& perception : spec.perceptions) {
+            for (uint64_t seed : spec.seeds) {
+              TrialKey key;
+              key.matrix_index = trials.size();
+              key.task_index = ti;
+              key.pair = pair;
+              key.vehicle = vehicle;
+              key.system = system;
+              key.perception = perception;
+              key.seed = seed;
+              trials.push_back(std::move(key));
+            }
           }
         }
       }
@@ -73,7 +79,8 @@ std::vector<TrialKey> ExpandMatrix(const MatrixSpec& spec) {
 
 std::string TrialStem(const MatrixSpec& spec, const TrialKey& key) {
   return spec.tasks[key.task_index].name + "_p" + std::to_string(key.pair) + "_s" +
-         std::to_string(key.seed) + "_" + key.vehicle + "_" + key.system;
+         std::to_string(key.seed) + "_" + key.vehicle + "_" + key.system +
+         PerceptionStemSuffix(key.perception);
 }
 
 Shard ParseShard(const std::string& text) {

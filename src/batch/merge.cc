@@ -18,7 +18,8 @@ MergeResult MergeIndexes(const std::vector<MergeInput>& inputs) {
         merged.emplace(r.matrix_index, MergedRow{r, in.origin});
       } else if (it->second.row.task != r.task || it->second.row.pair != r.pair ||
                  it->second.row.seed != r.seed || it->second.row.vehicle != r.vehicle ||
-                 it->second.row.system != r.system) {
+                 it->second.row.system != r.system ||
+                 it->second.row.perception != r.perception) {
         result.conflicts.push_back("matrix index " + std::to_string(r.matrix_index) + " is " +
                                    RowStem(it->second.row) + " in " + it->second.origin +
                                    " but " + RowStem(r) + " in " + in.origin);

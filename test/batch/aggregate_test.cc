@@ -4,6 +4,8 @@
 #include "vb/batch/aggregate.h"
 
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -114,6 +116,68 @@ TEST(AggregateTest, TextOutputsAreDeterministicAndOrderIndependent) {
   EXPECT_NE(ReportMarkdown(a).find("| pid/hmmwv | 6 | 4 | 50.0 | 25.0 | 25.0 | 0.0 | 0.0 | 0.0 | 1 | 1 |"),
             std::string::npos)
       << ReportMarkdown(a);
+}
+
+}  // namespace
+}  // namespace vb::batch
+
+namespace vb::batch {
+namespace {
+
+TEST(AggregateTest, RobustnessTableOrdersPresetsAndKeepsSystemsApart) {
+  std::vector<TrialRow> rows;
+  auto add = [&](const std::string& system, const std::string& perception,
+                 const std::string& status) {
+    TrialRow r = Row(system, status, 10.0, 1.0, 1.0);
+    r.perception = perception;
+    rows.push_back(r);
+  };
+  // pid: none 2/2, moderate 1/2, severe 0/2; eh only with none (1/1) and severe (0/1).
+  add("pid", "severe", "stuck");
+  add("pid", "none", "success");
+  add("pid", "moderate", "success");
+  add("pid", "severe", "rollover");
+  add("pid", "none", "success");
+  add("pid", "moderate", "stuck");
+  add("eh", "none", "success");
+  add("eh", "severe", "timeout");
+  const Report rep = BuildReport(rows);
+  ASSERT_EQ(rep.perceptions, (std::vector<std::string>{"none", "moderate", "severe"}));
+  ASSERT_EQ(rep.robustness_systems, (std::vector<std::string>{"eh/hmmwv", "pid/hmmwv"}));
+  ASSERT_EQ(rep.robustness.size(), 6u);
+  EXPECT_EQ(rep.robustness[0].perception, "none");
+  EXPECT_DOUBLE_EQ(rep.robustness[0].stats.success_pct, 100.0);
+  EXPECT_EQ(rep.robustness[1].stats.ran, 0);   // eh never ran with moderate
+  EXPECT_DOUBLE_EQ(rep.robustness[3].stats.success_pct, 100.0);  // pid none
+  EXPECT_DOUBLE_EQ(rep.robustness[4].stats.success_pct, 50.0);   // pid moderate
+  EXPECT_DOUBLE_EQ(rep.robustness[5].stats.success_pct, 0.0);    // pid severe
+  // Table I never pools perception presets.
+  EXPECT_EQ(rep.table1.size(), 5u);
+  EXPECT_NE(ReportMarkdown(rep).find("| pid/hmmwv | 100.0 (2) | 50.0 (2) | 0.0 (2) |"),
+            std::string::npos)
+      << ReportMarkdown(rep);
+  // Ground truth alone: no robustness section.
+  EXPECT_TRUE(BuildReport(HandMadeSet()).robustness.empty());
+}
+
+TEST(IndexPerceptionTest, IndexesWithoutThePerceptionColumnReadAsGroundTruth) {
+  TrialRow r;
+  r.status = "success";
+  r.perception = "severe";
+  std::string text = IndexCsv({r});
+  const std::vector<TrialRow> back = ParseIndexCsv(text, "i.csv");
+  ASSERT_EQ(back.size(), 1u);
+  EXPECT_EQ(back[0].perception, "severe");
+  // Drop the column (header and row) as an index written before it existed.
+  const size_t h = text.find(",perception");
+  text.erase(h, std::string(",perception").size());
+  const size_t v = text.find(",severe");
+  text.erase(v, std::string(",severe").size());
+  const std::vector<TrialRow> old = ParseIndexCsv(text, "old.csv");
+  ASSERT_EQ(old.size(), 1u);
+  EXPECT_EQ(old[0].perception, "none");
+  EXPECT_EQ(RowStem(old[0]), "_p0_s0__");
+  EXPECT_EQ(RowStem(back[0]), "_p0_s0___perc-severe");
 }
 
 }  // namespace

@@ -64,6 +64,7 @@ batch::TrialRow ReadTrialJson(const std::string& path) {
   r.seed = As<uint64_t>(root, "seed", path);
   r.vehicle = As<std::string>(root, "vehicle", path);
   r.system = As<std::string>(root, "system", path);
+  r.perception = root["perception"] ? As<std::string>(root, "perception", path) : "none";
   r.status = As<std::string>(root, "status", path);
   if (!batch::IsKnownStatus(r.status)) {
     throw InputError(path, 0, "status", "unknown status '" + r.status + "'");
@@ -95,6 +96,7 @@ void WriteUnrunTrialJson(const std::string& path, const std::string& task_name, 
   t += "  \"seed\": " + std::to_string(p.seed) + ",\n";
   t += "  \"vehicle\": " + JsonString(p.vehicle) + ",\n";
   t += "  \"system\": " + JsonString(p.system) + ",\n";
+  if (p.perception != "none") t += "  \"perception\": " + JsonString(p.perception) + ",\n";
   t += "  \"status\": " + JsonString(status) + ",\n";
   t += "  \"failure_type\": " + JsonString(status) + ",\n";
   t += "  \"message\": " + JsonString(message) + ",\n";
@@ -167,6 +169,28 @@ std::vector<std::string> WriteReportPlots(const batch::Report& report, const std
       WriteBarChart(c, dir + "/table1.png");
       written.push_back("table1.png");
     }
+  }
+  if (!report.robustness.empty()) {
+    // Success vs perception preset, one bar per system (the presets are ordered by severity).
+    BarChart c;
+    c.title = "Robustness: success rate per perception preset";
+    c.y_label = "success % of trials that ran";
+    c.series_labels = report.robustness_systems;
+    c.group_labels = report.perceptions;
+    c.values.assign(report.perceptions.size(),
+                    std::vector<double>(report.robustness_systems.size(), kNaN));
+    for (const batch::RobustnessRow& r : report.robustness) {
+      const size_t g = static_cast<size_t>(
+          std::find(report.perceptions.begin(), report.perceptions.end(), r.perception) -
+          report.perceptions.begin());
+      const size_t s = static_cast<size_t>(std::find(report.robustness_systems.begin(),
+                                                     report.robustness_systems.end(), r.system) -
+                                           report.robustness_systems.begin());
+      c.values[g][s] = r.stats.success_pct;
+    }
+    c.y_max = 100.0;
+    WriteBarChart(c, dir + "/robustness.png");
+    written.push_back("robustness.png");
   }
   struct Metric {
     const char* name;

@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "io/build_info.h"
+#include "vb/batch/index.h"
 #include "vb/engine/error.h"
 #include "vb/engine/text_format.h"
 
@@ -162,7 +163,8 @@ Provenance MakeProvenance(const terrain::TaskSpec& task, const runner::TrialSpec
 
 std::string TrialFileStem(const runner::TrialResult& r) {
   return r.task_name + "_p" + std::to_string(r.spec.pair_index) + "_s" +
-         std::to_string(r.spec.seed) + "_" + r.spec.vehicle + "_" + r.spec.system;
+         std::to_string(r.spec.seed) + "_" + r.spec.vehicle + "_" + r.spec.system +
+         batch::PerceptionStemSuffix(r.perception);
 }
 
 void WriteTrialJson(const runner::TrialResult& r, const std::string& path,
@@ -180,6 +182,10 @@ void WriteTrialJson(const runner::TrialResult& r, const std::string& path,
   prov.Str("soil", provenance.soil);
   prov.Str("soil_fnv1a64", provenance.soil_fnv1a64);
   prov.Str("system", provenance.system);
+  if (provenance.perception != "none") {
+    prov.Str("perception", provenance.perception);
+    prov.Str("perception_fnv1a64", provenance.perception_fnv1a64);
+  }
   prov.UInt("seed", provenance.seed);
   prov.Str("host", provenance.host);
 
@@ -189,6 +195,11 @@ void WriteTrialJson(const runner::TrialResult& r, const std::string& path,
   o.UInt("seed", r.spec.seed);
   o.Str("vehicle", r.spec.vehicle);
   o.Str("system", r.spec.system);
+  if (r.perception != "none") {  // ground-truth records keep their format
+    o.Str("perception", r.perception);
+    o.Int("missed_obstacles", r.missed_obstacles);
+    o.Int("phantom_rocks", r.phantom_rocks);
+  }
   o.Str("status", status);
   o.Raw("failure_type", success ? "null" : JsonString(status));
   o.Str("message", r.message);

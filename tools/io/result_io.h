@@ -29,6 +29,9 @@ struct Provenance {
   std::string soil;
   std::string soil_fnv1a64;
   std::string system;
+  // Perception preset and the FNV-1a of its file (written only when not "none").
+  std::string perception = "none";
+  std::string perception_fnv1a64;
   uint64_t seed = 0;
   std::string host;
 };
@@ -47,7 +50,8 @@ void RecordParameterFiles(const std::string& vehicle_file, const std::string& so
 // FNV-1a of a file's bytes as 16 hex digits; InputError naming the file if it cannot be read.
 std::string FileFnv1a64Hex(const std::string& path);
 
-// Standard file names of a trial's outputs: <task>_p<K>_s<seed>_<vehicle>_<system>.
+// Standard file names of a trial's outputs: <task>_p<K>_s<seed>_<vehicle>_<system>, with
+// _perc-<preset> appended when the perception is not ground truth.
 std::string TrialFileStem(const runner::TrialResult& result);
 
 // Writers. Each throws InputError naming the path if the file cannot be written.

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "io/batch_io.h"
+#include "io/perception_io.h"
 #include "io/cli_args.h"
 #include "io/result_io.h"
 #include "io/yaml_strict.h"
@@ -317,6 +318,11 @@ int Run(const Options& o) {
                          vb::io::FileFnv1a64Hex(DataDir() + "/soils/" + o.soil + ".yaml");
   for (const std::string& v : spec.vehicles) {
     settings += " vehicle=" + v + ":" + vb::io::FileFnv1a64Hex(DataDir() + "/vehicles/" + v + ".yaml");
+  }
+  for (const std::string& p : spec.perceptions) {
+    if (p == "none") continue;  // ground truth has no file (and older batches no such entry)
+    settings += " perception=" + p + ":" +
+                vb::io::FileFnv1a64Hex(vb::io::PerceptionFile(p, DataDir()));
   }
   const int lock_fd = PrepareOutputDir(o, settings);
   const vb::io::Provenance build = ProvenanceFor(spec.tasks.front(), all.front());

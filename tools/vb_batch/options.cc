@@ -20,6 +20,8 @@ matrix:
   --systems LIST|all   mobility systems (default: pid): pid, eh, mppi (the paper's classical
                        baselines), eh_original, mppi_original (the original code's variants,
                        docs/baselines.md); --system is the same flag
+  --perception LIST    perception presets, e.g. none,mild,moderate,severe (default: none, ground
+                       truth); a preset of $VB_DATA_DIR/perception/ (docs/perception.md)
   --seeds LIST         trial seeds, e.g. 0-4 (default: 0)
   --scale LIST         keep only tasks whose world scale is listed, e.g. 1,0.1 (default: all)
 execution:
@@ -37,7 +39,8 @@ execution:
   --quiet              no per-trial lines or progress bar, only the summary
   --help               this text
 
-outputs in DIR: trials/<task>_p<K>_s<seed>_<vehicle>_<system>.json and _traj.csv per trial,
+outputs in DIR: trials/<task>_p<K>_s<seed>_<vehicle>_<system>[_perc-<preset>].json and _traj.csv
+per trial,
 index.csv (one row per finished trial of this shard), batch.json (matrix and settings).
 Trial status: success, rollover, stuck, timeout, sim_error, out_of_bounds (the runner's), error
 (trial could not be set up, e.g. a task file that does not load) or crashed (worker died;
@@ -78,6 +81,8 @@ Options ParseArgs(int argc, char** argv) {
       o.pairs = args.Value();
     } else if (a == "--vehicles") {
       o.vehicles = args.Value();
+    } else if (a == "--perception") {
+      o.perception = args.Value();
     } else if (a == "--systems" || a == "--system") {
       o.systems = args.Value();
     } else if (a == "--seeds") {

@@ -16,6 +16,7 @@ struct Options {
   std::string pairs = "all";
   std::string vehicles = "hmmwv";
   std::string systems = "pid";
+  std::string perception = "none";   // presets (docs/perception.md), comma-separated
   std::string seeds = "0";
   std::string scales;
   std::string soil = "verti_bench";   // data/soils/<soil>.yaml for deformable patches

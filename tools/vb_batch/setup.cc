@@ -9,6 +9,7 @@
 #include <filesystem>
 
 #include "io/cli_args.h"
+#include "io/perception_io.h"
 #include "io/soil_io.h"
 #include "io/task_io.h"
 #include "io/vehicle_io.h"
@@ -130,6 +131,10 @@ vb::batch::MatrixSpec BuildSpec(const Options& o, const std::vector<std::string>
   }
   spec.vehicles = NameList("--vehicles", o.vehicles, vb::io::VehicleNames(DataDir()));
   spec.systems = NameList("--systems", o.systems, vb::controllers::ControllerNames());
+  spec.perceptions = NameList("--perception", o.perception, vb::io::PerceptionNames(DataDir()));
+  // Presets are read in every worker; check each once here (one clear error, not a batch of
+  // error trials).
+  for (const std::string& p : spec.perceptions) vb::io::ResolvePerception(p, DataDir());
   for (uint64_t s : ParseIntList("--seeds", o.seeds)) spec.seeds.push_back(s);
   // The soil file is read in every worker that needs it; check it once here so a bad name or
   // file is one clear error, not a batch of error trials.
@@ -146,6 +151,7 @@ vb::io::Provenance ProvenanceFor(const vb::batch::MatrixTask& t,
   spec.system = key.system;
   spec.seed = key.seed;
   vb::io::Provenance p = vb::io::MakeProvenance(dummy, spec);
+  p.perception = key.perception;
   p.task_fnv1a64 = t.task_fnv1a64;
   return p;
 }

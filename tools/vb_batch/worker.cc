@@ -7,6 +7,7 @@
 #include <cstring>
 
 #include "io/batch_io.h"
+#include "io/perception_io.h"
 #include "io/result_io.h"
 #include "io/soil_io.h"
 #include "io/task_io.h"
@@ -39,6 +40,7 @@ namespace vb_batch {
       vb::runner::EpisodeRules rules;
       rules.time_limit_s = o.time_limit_s;
       rules.trajectory_every_n_steps = o.traj_every;
+      rules.perception = vb::io::ResolvePerception(key.perception, DataDir());
       const std::optional<vb::soil::SoilConfig> soil =
           vb::io::LoadSoilIfNeeded(task, soil_file);
       const vb::runner::TrialResult r =
@@ -47,6 +49,11 @@ namespace vb_batch {
       vb::io::WriteTrajectoryCsv(r, stem_path + "_traj.csv");
       vb::io::Provenance provenance = vb::io::MakeProvenance(task, spec);
       vb::io::RecordParameterFiles(vehicle_file, o.soil, soil ? soil_file : "", &provenance);
+      vb::io::RecordPerception(key.perception,
+                               key.perception == "none"
+                                   ? std::string()
+                                   : vb::io::PerceptionFile(key.perception, DataDir()),
+                               &provenance);
       vb::io::WriteTrialJson(r, stem_path + ".json", provenance);
     } catch (const vb::InputError& e) {
       vb::io::WriteUnrunTrialJson(stem_path + ".json", t.name, key.pair, ProvenanceFor(t, key),

@@ -58,6 +58,9 @@ int Report(const std::vector<std::string>& args) {
   const vb::batch::Report report = vb::batch::BuildReport(rows);
   vb::io::WriteFileAtomic(out + "/table1.csv", vb::batch::Table1Csv(report));
   vb::io::WriteFileAtomic(out + "/fig6.csv", vb::batch::FactorsCsv(report));
+  if (!report.robustness.empty()) {
+    vb::io::WriteFileAtomic(out + "/robustness.csv", vb::batch::RobustnessCsv(report));
+  }
   std::string md = vb::batch::ReportMarkdown(report);
   const std::vector<std::string> plots = vb::io::WriteReportPlots(report, out);
   if (!plots.empty()) {

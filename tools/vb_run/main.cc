@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "io/cli_args.h"
+#include "io/perception_io.h"
 #include "io/result_io.h"
 #include "io/soil_io.h"
 #include "io/task_io.h"
@@ -32,6 +33,9 @@ options:
                      docs/baselines.md)
   --soil NAME        soil parameters $VB_DATA_DIR/soils/NAME.yaml for tasks with mud, sand or
                      snow patches (default: verti_bench, the original's three soils)
+  --perception NAME  what the system sees: none (ground truth, default), a preset of
+                     $VB_DATA_DIR/perception (mild, moderate, severe) or a .yaml file
+                     (docs/perception.md)
   --pair K|all       start/goal pair index, or all pairs (default: all)
   --seed S           trial seed, an unsigned 64-bit integer (default: 0)
   --out DIR          output directory (default: results/<task name>/)
@@ -44,6 +48,7 @@ options:
 outputs, per trial, in DIR:
   <task>_p<K>_s<seed>_<vehicle>_<system>.json       status, failure type, metrics, provenance
   <task>_p<K>_s<seed>_<vehicle>_<system>_traj.csv   per-step trajectory
+(with _perc-<preset> after <system> when --perception is not none)
 and DIR/summary.csv with one row per trial of this run. Files are written atomically.
 
 exit codes:
@@ -58,6 +63,7 @@ struct Options {
   std::string vehicle;
   std::string system = "pid";
   std::string soil = "verti_bench";
+  std::string perception = "none";
   std::string pair = "all";
   uint64_t seed = 0;
   std::string out_dir;
@@ -80,6 +86,8 @@ Options ParseArgs(int argc, char** argv) {
       o.system = args.Value();
     } else if (a == "--soil") {
       o.soil = args.Value();
+    } else if (a == "--perception") {
+      o.perception = args.Value();
     } else if (a == "--pair") {
       o.pair = args.Value();
     } else if (a == "--seed") {
@@ -141,6 +149,9 @@ int Run(const Options& o) {
   if (ec) throw vb::InputError(out_dir, 0, "--out", "cannot create directory: " + ec.message());
 
   vb::runner::EpisodeRules rules;
+  rules.perception = vb::io::ResolvePerception(o.perception, data_dir);
+  const std::string perception_file =
+      o.perception == "none" ? "" : vb::io::PerceptionFile(o.perception, data_dir);
   rules.time_limit_s = o.time_limit_s;
   rules.trajectory_every_n_steps = o.traj_every;
   std::vector<vb::runner::TrialResult> results;
@@ -155,6 +166,7 @@ int Run(const Options& o) {
     const std::string stem = out_dir + "/" + vb::io::TrialFileStem(r);
     vb::io::Provenance provenance = vb::io::MakeProvenance(task, spec);
     vb::io::RecordParameterFiles(vehicle_file, o.soil, soil ? soil_file : "", &provenance);
+    vb::io::RecordPerception(rules.perception.name, perception_file, &provenance);
     vb::io::WriteTrialJson(r, stem + ".json", provenance);
     vb::io::WriteTrajectoryCsv(r, stem + "_traj.csv");
     ++counts[static_cast<int>(r.status)];

@@ -32,7 +32,8 @@ struct GroupStats {
 
 GroupStats Aggregate(const std::vector<const TrialRow*>& rows);
 
-// "system/vehicle"
+// "system/vehicle", with "/perception:<preset>" appended when the perception is not ground truth
+// (so Table I and Fig. 6 never pool results of different perception).
 std::string SystemLabel(const TrialRow& row);
 
 struct Table1Row {
@@ -46,10 +47,22 @@ struct FactorRow {
   GroupStats stats;
 };
 
+// Robustness (docs/perception.md): one system/vehicle under one perception preset.
+struct RobustnessRow {
+  std::string system;      // "system/vehicle"
+  std::string perception;  // preset
+  GroupStats stats;
+};
+
 struct Report {
   std::vector<std::string> systems;   // sorted
   std::vector<Table1Row> table1;      // one per system, in `systems` order
   std::vector<FactorRow> factors;     // factor, then level (canonical order), then system
+  // Only when some trial had a perception other than none: presets in order (none, mild,
+  // moderate, severe, then others sorted) and rows system-major in that order.
+  std::vector<std::string> perceptions;
+  std::vector<std::string> robustness_systems;   // "system/vehicle", sorted
+  std::vector<RobustnessRow> robustness;
 };
 
 // The canonical levels of each factor (low/mid/high, rigid/deformable/mixed,
@@ -60,6 +73,8 @@ Report BuildReport(const std::vector<TrialRow>& rows);
 // Text outputs (deterministic: same rows -> same bytes; no wall times or host names).
 std::string Table1Csv(const Report& report);
 std::string FactorsCsv(const Report& report);
+// system,perception,<stats> (header only when the report has no robustness rows).
+std::string RobustnessCsv(const Report& report);
 std::string ReportMarkdown(const Report& report);
 
 }  // namespace vb::batch

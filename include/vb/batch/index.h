@@ -25,6 +25,7 @@ struct TrialRow {
   uint64_t seed = 0;
   std::string vehicle;
   std::string system;
+  std::string perception = "none";   // perception preset (docs/perception.md)
   double scale = 1.0;
   std::string elevation;
   std::string terrain;
@@ -44,13 +45,16 @@ struct TrialRow {
   std::string message;
 };
 
-// File stem of a row's trial files: <task>_p<K>_s<seed>_<vehicle>_<system> (as TrialStem).
+// File stem of a row's trial files: <task>_p<K>_s<seed>_<vehicle>_<system>[_perc-<preset>]
+// (as TrialStem; the suffix only for a perception other than none).
 std::string RowStem(const TrialRow& row);
+// "" for ground truth ("none"), "_perc-<preset>" otherwise.
+std::string PerceptionStemSuffix(const std::string& perception);
 
 // CSV text of the index (header + rows in the given order). Numbers print with "%.17g", NaN as
 // an empty field.
 std::string IndexCsv(const std::vector<TrialRow>& rows);
-// Parses IndexCsv output; throws InputError naming `source` and the line on malformed input.
+// Parses IndexCsv output (also indexes without the perception column: "none"); throws InputError naming `source` and the line on malformed input.
 std::vector<TrialRow> ParseIndexCsv(const std::string& text, const std::string& source);
 
 // The fields that must agree between two records of the same trial (everything except host and

@@ -27,6 +27,7 @@ struct MatrixSpec {
   std::vector<int> pairs;          // empty: every pair of each task
   std::vector<std::string> vehicles;
   std::vector<std::string> systems;
+  std::vector<std::string> perceptions = {"none"};  // perception presets (docs/perception.md)
   std::vector<uint64_t> seeds;
 };
 
@@ -40,14 +41,16 @@ struct TrialKey {
   int pair = 0;
   std::string vehicle;
   std::string system;
+  std::string perception = "none";
   uint64_t seed = 0;
 };
 
-// All trials, ordered task, pair, vehicle, system, seed (the first varies slowest).
+// All trials, ordered task, pair, vehicle, system, perception, seed (the first varies slowest).
 // Throws InputError if two tasks share a name, a list is empty or has duplicates.
 std::vector<TrialKey> ExpandMatrix(const MatrixSpec& spec);
 
-// File stem of a trial's outputs, the same as vb_run's: <task>_p<K>_s<seed>_<vehicle>_<system>.
+// File stem of a trial's outputs, the same as vb_run's:
+// <task>_p<K>_s<seed>_<vehicle>_<system>[_perc-<preset>] (suffix only for perception != none).
 std::string TrialStem(const MatrixSpec& spec, const TrialKey& key);
 
 struct Shard {

@@ -129,6 +129,7 @@ void ValidateRules(const EpisodeRules& rules) {
     throw InputError("", 0, "stuck_window_s", "must be in (0, " + Fmt(kMaxTimeLimit_s) + "] s");
   }
   StepsPerControlPeriod(rules);
+  ValidatePerception(rules.perception, "perception '" + rules.perception.name + "'");
 }
 
 }  // namespace
@@ -169,7 +170,9 @@ struct Episode::Impl {
                                   terrain::PlannerInflationCells(task))),
         maps(task, /*inflation_cells=*/0),
         obstacles(task, ground),
-        builder(maps, inflated, task.scale) {}
+        builder(maps, inflated, task.scale) {
+    builder.SetPerception(rules.perception, rules.step_s);
+  }
 
   // --- static world (per Episode; its own copies of the inputs) ---
   const terrain::TaskSpec task;
@@ -247,6 +250,7 @@ void Episode::Impl::PhysicsStep() {
   ++progress.k;
   const double t = Time();
   const vehicles::VehicleState& s = vehicle->state();
+  builder.Record(progress.k, s);
 
   // Numerical trouble ends the trial as data, never as a crash.
   const std::string trouble =
@@ -333,6 +337,9 @@ TrialResult Episode::Impl::MakeResult() const {
   TrialResult r;
   r.spec = spec;
   r.task_name = task.name;
+  r.perception = rules.perception.name;
+  r.missed_obstacles = builder.perception().missed_obstacles();
+  r.phantom_rocks = builder.perception().phantom_rocks();
   r.status = progress.status;
   r.message = progress.message;
   if (!progress.done) Classify(&r.status, &r.message);
@@ -436,14 +443,14 @@ void Episode::Reset(const TrialSpec& spec) {
 
   m.context = controllers::EpisodeContext();
   m.context.task = &task;
-  m.context.inflated_obstacles = &m.inflated;
+  m.builder.Reset(pair.goal_m, spec.seed, task);
+  m.context.inflated_obstacles = &m.builder.planning_grid();
   m.context.maps = &m.maps;
   m.context.goal_m = pair.goal_m;
   m.context.scale = task.scale;
   m.context.step_s = m.rules.step_s;
   m.context.control_period_s = m.rules.control_period_s;
   m.context.seed = spec.seed;
-  m.builder.Reset(pair.goal_m);
 
   const int every = m.rules.trajectory_every_n_steps;
   const long reserve_steps =
@@ -453,6 +460,7 @@ void Episode::Reset(const TrialSpec& spec) {
                            every > 0 ? static_cast<size_t>(reserve_steps / every) + 2 : 0);
   m.progress = Progress();
   const vehicles::VehicleState& s = m.vehicle->state();
+  m.builder.Record(0, s);
   if (every > 0) m.metrics.trajectory().push_back(MakeSample(0.0, s, m.progress.inputs));
   m.metrics.StartPosition(s.pose_W.position.head<2>());
   m.progress.final_goal_distance_m = (pair.goal_m - s.pose_W.position.head<2>()).norm();
@@ -502,7 +510,7 @@ const controllers::Observation& Episode::Observe() {
   Impl& m = *impl_;
   VB_DEMAND(m.started);
   if (!m.observation_valid) {
-    m.builder.Build(m.Time(), m.vehicle->state(), &m.observation);
+    m.builder.Build(m.progress.k, m.Time(), m.vehicle->state(), &m.observation);
     m.observation_valid = true;
   }
   return m.observation;
@@ -530,6 +538,7 @@ struct EpisodeSnapshot::Data {
   Progress progress;
   TrialMetrics metrics;
   NavigationState navigation;
+  PerceptionState perception;
   controllers::Observation observation;
   bool observation_valid = false;
   vehicles::VehicleSnapshot vehicle;
@@ -557,6 +566,7 @@ EpisodeSnapshot Episode::Snapshot() const {
   d.progress = m.progress;
   d.metrics = m.metrics;
   d.navigation = m.builder.navigation();
+  d.perception = m.builder.perception_state();
   d.observation = m.observation;
   d.observation_valid = m.observation_valid;
   d.vehicle = m.vehicle->Snapshot();
@@ -569,12 +579,17 @@ void Episode::Restore(const EpisodeSnapshot& snapshot) {
   VB_DEMAND(snapshot.data_ != nullptr);
   const EpisodeSnapshot::Data& d = *snapshot.data_;
   Impl& m = *impl_;
-  if (!m.started || m.spec.pair_index != d.spec.pair_index) Reset(d.spec);
+  // The perception's map errors and perceived obstacles come from the trial seed.
+  if (!m.started || m.spec.pair_index != d.spec.pair_index ||
+      (m.builder.perception().enabled() && m.spec.seed != d.spec.seed)) {
+    Reset(d.spec);
+  }
   m.spec = d.spec;
   m.context.seed = d.spec.seed;
   m.progress = d.progress;
   m.metrics = d.metrics;
   m.builder.set_navigation(d.navigation);
+  m.builder.set_perception_state(d.perception);
   m.observation = d.observation;
   m.observation.global_path_m = &m.builder.navigation().path_m;
   m.observation_valid = d.observation_valid;

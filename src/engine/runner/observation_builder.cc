@@ -25,11 +25,22 @@ void ObservationBuilder::SetConfig(const controllers::ObservationConfig& config)
   config_ = config;
 }
 
-void ObservationBuilder::Reset(const Vec2& goal_m) {
+void ObservationBuilder::SetPerception(const PerceptionParams& params, double step_s) {
+  perception_ = PerceptionModel(params, step_s);
+  goal_field_.reset();
+  field_goal_m_.reset();
+}
+
+void ObservationBuilder::Reset(const Vec2& goal_m, uint64_t trial_seed,
+                               const terrain::TaskSpec& task) {
   goal_m_ = goal_m;
-  if (!field_goal_m_ || *field_goal_m_ != goal_m) {
+  perception_.Reset(trial_seed, task);
+  // Perceived obstacles differ per trial: their planning grid needs its own field every time.
+  const bool per_trial_grid = perception_.params().HasObstacleErrors();
+  if (per_trial_grid || !field_goal_m_ || *field_goal_m_ != goal_m) {
     goal_field_.reset();
-    if (inflated_.rows > 0) goal_field_.emplace(inflated_, inflated_.CellOf(goal_m));
+    const terrain::OccupancyGrid& grid = planning_grid();
+    if (grid.rows > 0) goal_field_.emplace(grid, grid.CellOf(goal_m));
     field_goal_m_ = goal_m;
   }
   nav_.path_m.clear();
@@ -38,15 +49,36 @@ void ObservationBuilder::Reset(const Vec2& goal_m) {
   nav_.replan_count = 0;
 }
 
-void ObservationBuilder::Build(double t_s, const vehicles::VehicleState& s,
+void ObservationBuilder::Build(long k, double t_now_s, const vehicles::VehicleState& current,
                                controllers::Observation* obs) {
-  // Robot state.
+  // With perception: the state the (late) observation describes, and the estimate's errors.
+  const bool perceived = perception_.enabled();
+  const long latency = perceived ? perception_.latency_steps() : 0;
+  const vehicles::VehicleState& s = perception_.Delayed(k, latency, current);
+  const double t_s = latency > 0
+                         ? static_cast<double>(std::max(0L, k - latency)) * perception_.step_s()
+                         : t_now_s;
+  PoseError error;
+  Vec3 velocity_noise = Vec3::Zero();
+  Vec3 rate_noise = Vec3::Zero();
+  if (perceived) {
+    error = perception_.AdvanceTo(t_s);
+    velocity_noise = perception_.VelocityNoise();
+    rate_noise = perception_.AngularVelocityNoise();
+  }
+
+  // Robot state (as estimated).
   obs->time_s = t_s;
-  obs->position_W = s.pose_W.position;
+  obs->position_W = s.pose_W.position + error.position_m;
   obs->rpy = s.rpy;
-  obs->velocity_W = s.velocity_W;
-  obs->angular_velocity_B = s.pose_W.rotation.conjugate() * s.angular_velocity_W;
-  obs->forward_speed_mps = s.forward_speed_mps;
+  if (perceived) {
+    obs->rpy.roll_rad += error.roll_rad;
+    obs->rpy.pitch_rad += error.pitch_rad;
+    obs->rpy.yaw_rad = WrapAngle(s.rpy.yaw_rad + error.yaw_rad);
+  }
+  obs->velocity_W = s.velocity_W + velocity_noise;
+  obs->angular_velocity_B = s.pose_W.rotation.conjugate() * s.angular_velocity_W + rate_noise;
+  obs->forward_speed_mps = s.forward_speed_mps + velocity_noise.x();
   obs->gear = s.gear;
   obs->engine_speed_radps = s.engine_speed_radps;
   obs->wheels.resize(s.wheels.size());
@@ -63,7 +95,8 @@ void ObservationBuilder::Build(double t_s, const vehicles::VehicleState& s,
 
   // Navigation: the global path from the current position every replan period; a failed plan
   // keeps the previous path (the original's behaviour).
-  const Vec2 position_m = s.pose_W.position.head<2>();
+  const Vec2 position_m = obs->position_W.head<2>();
+  const double yaw_rad = obs->rpy.yaw_rad;
   if (t_s - nav_.last_replan_s >= config_.replan_period_s - kReplanTimeTolerance_s) {
     nav_.last_replan_s = t_s;
     if (goal_field_) {
@@ -83,19 +116,35 @@ void ObservationBuilder::Build(double t_s, const vehicles::VehicleState& s,
   }
   obs->goal_m = goal_m_;
   obs->goal_distance_m = (goal_m_ - position_m).norm();
-  obs->local_goal_m = terrain::LookAheadPoint(nav_.path_m, position_m, s.rpy.yaw_rad,
+  obs->local_goal_m = terrain::LookAheadPoint(nav_.path_m, position_m, yaw_rad,
                                               config_.lookahead_m * scale_,
                                               &nav_.local_goal_index);
   const Vec2 to_goal = obs->local_goal_m - position_m;
-  obs->heading_error_rad = WrapAngle(std::atan2(to_goal.y(), to_goal.x()) - s.rpy.yaw_rad);
+  obs->heading_error_rad = WrapAngle(std::atan2(to_goal.y(), to_goal.x()) - yaw_rad);
   obs->global_path_m = &nav_.path_m;
 
-  // Maps.
+  // Maps: registered at the estimated pose (of the mapping delay ago, with perception).
   obs->crops.resize(config_.crops.size());
+  Vec2 crop_position_m = position_m;
+  double crop_yaw_rad = yaw_rad;
+  if (perceived && perception_.crop_delay_steps() > latency) {
+    const vehicles::VehicleState& mapped =
+        perception_.Delayed(k, perception_.crop_delay_steps(), current);
+    crop_position_m = mapped.pose_W.position.head<2>() + error.position_m.head<2>();
+    crop_yaw_rad = WrapAngle(mapped.rpy.yaw_rad + error.yaw_rad);
+  }
   for (size_t i = 0; i < config_.crops.size(); ++i) {
     const controllers::CropSpec& c = config_.crops[i];
-    maps_.CropInto(c.layer, position_m, s.rpy.yaw_rad, c.size_cells, c.resolution_m * scale_,
-                   &obs->crops[i]);
+    const double res = c.resolution_m * scale_;
+    maps_.CropInto(c.layer, crop_position_m, crop_yaw_rad, c.size_cells, res, &obs->crops[i]);
+    if (!perceived) continue;
+    const terrain::GridMap* truth = nullptr;
+    if (c.layer == terrain::MapLayer::kFriction && perception_.params().HasSemanticErrors()) {
+      maps_.CropInto(terrain::MapLayer::kSemantics, crop_position_m, crop_yaw_rad, c.size_cells,
+                     res, &semantics_scratch_);
+      truth = &semantics_scratch_;
+    }
+    perception_.ApplyToCrop(c.layer, crop_position_m, crop_yaw_rad, truth, &obs->crops[i]);
   }
 }
 

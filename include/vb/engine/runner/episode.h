@@ -15,6 +15,7 @@
 
 #include "vb/controllers/controller.h"
 #include "vb/engine/fixed_vector.h"
+#include "vb/engine/runner/perception.h"
 #include "vb/soil/soil_params.h"
 #include "vb/terrain/task.h"
 #include "vb/vehicles/vehicle.h"
@@ -60,6 +61,8 @@ struct EpisodeRules {
   double start_height_m = 0.5;         // drop height of the wheel bottoms above the terrain
   bool end_early = true;               // stop once the failure is certain
   int trajectory_every_n_steps = 1;    // trajectory decimation; 0: no trajectory at all
+  // What the mobility system sees (docs/perception.md); default: ground truth.
+  PerceptionParams perception;
   StepTimings* timings = nullptr;      // if set, the loop adds its wall-clock breakdown here
 };
 
@@ -98,6 +101,9 @@ struct SignalStats {
 struct TrialResult {
   TrialSpec spec;
   std::string task_name;
+  std::string perception = "none";     // perception preset (docs/perception.md)
+  int missed_obstacles = 0;            // rocks and trees the perception missed this trial
+  int phantom_rocks = 0;               // rocks it saw that are not there
   TrialStatus status = TrialStatus::kTimeout;
   std::string message;                 // why it ended (sim_error details)
   double sim_time_s = 0.0;             // simulated time when the trial ended

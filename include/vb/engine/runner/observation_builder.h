@@ -8,6 +8,8 @@
 #include <vector>
 
 #include "vb/controllers/observation.h"
+#include "vb/engine/error.h"
+#include "vb/engine/runner/perception.h"
 #include "vb/terrain/grid_planner.h"
 #include "vb/terrain/gt_maps.h"
 #include "vb/vehicles/vehicle.h"
@@ -31,17 +33,44 @@ class ObservationBuilder {
 
   void SetConfig(const controllers::ObservationConfig& config);
   const controllers::ObservationConfig& config() const { return config_; }
+  // Imperfect perception (perception.h); default: none (ground truth). step_s: physics step.
+  void SetPerception(const PerceptionParams& params, double step_s);
+  const PerceptionModel& perception() const { return perception_; }
 
-  // New episode towards `goal_m`: the planner's cost-to-goal field (computed once per goal; a
-  // repeated goal reuses it) and empty navigation state.
-  void Reset(const Vec2& goal_m);
+  // New episode towards `goal_m` with the trial seed (perception errors) of `task`: the
+  // planner's cost-to-goal field (computed once per goal and planning grid; a repeated goal
+  // reuses it) and empty navigation state.
+  void Reset(const Vec2& goal_m, uint64_t trial_seed, const terrain::TaskSpec& task);
+  // The same without perception errors (ground truth only).
+  void Reset(const Vec2& goal_m) {
+    VB_DEMAND(!perception_.enabled());
+    Reset(goal_m, 0, terrain::TaskSpec());
+  }
 
-  // Fills *obs for the vehicle state at time t_s (replanning the global path when the replan
-  // period has passed). No allocation once the crops and the path have their sizes.
-  void Build(double t_s, const vehicles::VehicleState& state, controllers::Observation* obs);
+  // The vehicle state after physics step k (k = 0: the start); needed only when
+  // perception().needs_history() (latency, mapping delay).
+  void Record(long k, const vehicles::VehicleState& state) { perception_.Record(k, state); }
+
+  // Fills *obs for the vehicle state at physics step k, time t_s (replanning the global path
+  // when the replan period has passed). No allocation once the crops and the path have their
+  // sizes.
+  void Build(long k, double t_s, const vehicles::VehicleState& state,
+             controllers::Observation* obs);
+  // The same for ground truth (no perception errors: the step index is not needed).
+  void Build(double t_s, const vehicles::VehicleState& state, controllers::Observation* obs) {
+    VB_DEMAND(!perception_.enabled());
+    Build(0, t_s, state, obs);
+  }
+
+  // The planning grid of this trial: the ground truth's, or the perceived obstacles' one.
+  const terrain::OccupancyGrid& planning_grid() const {
+    return perception_.params().HasObstacleErrors() ? perception_.perceived_inflated() : inflated_;
+  }
 
   const NavigationState& navigation() const { return nav_; }
   void set_navigation(const NavigationState& nav) { nav_ = nav; }
+  const PerceptionState& perception_state() const { return perception_.state(); }
+  void set_perception_state(const PerceptionState& s) { perception_.set_state(s); }
 
  private:
   const terrain::GroundTruthMaps& maps_;
@@ -52,6 +81,8 @@ class ObservationBuilder {
   std::optional<terrain::GoalDistanceField> goal_field_;
   std::optional<Vec2> field_goal_m_;   // goal the field was computed for
   NavigationState nav_;
+  PerceptionModel perception_;
+  terrain::GridMap semantics_scratch_;  // true semantics under a friction crop (perception)
 };
 
 }  // namespace vb::runner
