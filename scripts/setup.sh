@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Installs what vb needs to build and test on Debian 12 (bookworm). Safe to re-run: installs only
-# missing packages. Needs root (or sudo).
+# Installs what vb needs to build and test on Debian 12 (bookworm): the Debian packages, then the
+# Python environment (.venv: the vb_gym package, editable, with numpy, gymnasium, h5py, pytest from
+# PyPI). Safe to re-run: installs only what is missing or changed. Needs root (or sudo) for apt.
 set -euo pipefail
 
 packages=(
@@ -10,6 +11,9 @@ packages=(
   libyaml-cpp-dev                # task and vehicle files
   libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev   # height images
   libgtest-dev                   # tests
+  python3 python3-venv           # the Python package's virtual environment (.venv)
+  nlohmann-json3-dev             # vb_gym protocol headers (JSON)
+  chromium                       # headless-browser tests of the 3-D viewer (docs/viewer.md)
 )
 
 missing=()
@@ -18,12 +22,31 @@ for p in "${packages[@]}"; do
 done
 if [ ${#missing[@]} -eq 0 ]; then
   echo "setup: all ${#packages[@]} packages present"
-  exit 0
+else
+  sudo=""
+  if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
+  echo "setup: installing ${missing[*]}"
+  export DEBIAN_FRONTEND=noninteractive
+  $sudo apt-get update -qq
+  $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
-sudo=""
-if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
-echo "setup: installing ${missing[*]}"
-export DEBIAN_FRONTEND=noninteractive
-$sudo apt-get update -qq
-$sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+# Python: .venv in the repository with the package installed editable (python/, docs/gym.md).
+# Re-installed only when python/pyproject.toml changes (its hash is kept in the venv). The
+# training extra (stable-baselines3, torch) is never installed here: pip install -e "python[sb3]".
+cd "$(dirname "$0")/.."
+venv=.venv
+stamp="$venv/.vb_setup_stamp"
+want="$(sha256sum python/pyproject.toml | cut -d' ' -f1)"
+if [ ! -x "$venv/bin/python" ]; then
+  echo "setup: creating the Python environment $venv"
+  /usr/bin/python3 -m venv "$venv"
+fi
+if [ "$(cat "$stamp" 2>/dev/null)" != "$want" ]; then
+  echo "setup: installing the vb_gym Python package into $venv (numpy, gymnasium, h5py, pytest)"
+  "$venv/bin/python" -m pip install -q --upgrade pip
+  "$venv/bin/python" -m pip install -q -e "python[test,datasets]"
+  echo "$want" > "$stamp"
+else
+  echo "setup: Python environment $venv up to date"
+fi

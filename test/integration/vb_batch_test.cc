@@ -112,6 +112,18 @@ TEST_F(VbBatchTest, FullRunRecordsEveryTrialWithItsStatus) {
   const std::string md = ReadFile(root_ / "full/report/report.md");
   EXPECT_NE(md.find(row), std::string::npos) << row << "\n" << md;
   EXPECT_TRUE(fs::exists(root_ / "full/report/fig6_terrain_success.png"));
+  // Every trial that ran is linked to its 3-D replay (docs/viewer.md).
+  EXPECT_NE(md.find("[trials.html](trials.html)"), std::string::npos);
+  const std::string trials = ReadFile(root_ / "full/report/trials.html");
+  EXPECT_NE(trials.find("<a href=\"/viewer/index.html?result=trials/env042_p1_s0_hmmwv_pid.json\">"),
+            std::string::npos)
+      << trials;
+  int links = 0;
+  for (size_t at = trials.find("?result=trials/"); at != std::string::npos;
+       at = trials.find("?result=trials/", at + 1)) {
+    ++links;
+  }
+  EXPECT_EQ(links, 6) << trials;
 
   // Top-down pictures on request; an unknown trial name is bad input.
   const std::string dir = (root_ / "full").string();

@@ -67,7 +67,10 @@ int Report(const std::vector<std::string>& args) {
     md += "\n## Plots\n\n";
     for (const std::string& p : plots) md += "![" + p + "](" + p + ")\n";
   }
+  md += "\nEvery trial with a link to its 3-D replay: [trials.html](trials.html) (serve the batch "
+        "directory with `vb_view serve DIR`).\n";
   vb::io::WriteFileAtomic(out + "/report.md", md);
+  vb::io::WriteFileAtomic(out + "/trials.html", TrialsPage(rows));
 
   size_t pictures = 0;
   if (!topdown.empty()) {

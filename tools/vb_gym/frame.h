@@ -1,0 +1,42 @@
+// The frames of the vb_gym protocol (docs/gym_protocol.md): a fixed 8-byte prefix (header length
+// and payload length, uint32 little-endian), a UTF-8 JSON header, then the payload: raw
+// little-endian arrays, one after the other, described by the header's "arrays" list. Raw
+// arrays let a 64 x 64 crop cross the pipe without any text encoding.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace vb::gym {
+
+// Largest header and payload a peer may announce; anything larger is a framing error (the stream
+// cannot be trusted after it).
+constexpr uint32_t kMaxHeaderBytes = 1u << 20;
+constexpr uint32_t kMaxPayloadBytes = 256u << 20;
+
+struct Frame {
+  std::string header;             // JSON text
+  std::vector<uint8_t> payload;   // raw arrays
+};
+
+enum class ReadStatus {
+  kOk,
+  kEof,           // the peer closed the stream cleanly between frames
+  kFramingError,  // truncated frame or announced lengths beyond the limits (message says which)
+};
+
+// Reads one frame from file descriptor fd (blocking). On kFramingError *error says what.
+ReadStatus ReadFrame(int fd, Frame* frame, std::string* error);
+
+// Writes one frame; false if the peer has gone (EPIPE) or the write failed.
+bool WriteFrame(int fd, const std::string& header, const std::vector<uint8_t>& payload);
+
+// Appends the raw little-endian bytes of `values` to *payload (the host must be little-endian:
+// checked once at start-up by HostIsLittleEndian).
+void AppendFloat32(const std::vector<double>& values, std::vector<uint8_t>* payload);
+void AppendFloat64(const std::vector<double>& values, std::vector<uint8_t>* payload);
+bool HostIsLittleEndian();
+
+}  // namespace vb::gym
