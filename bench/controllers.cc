@@ -130,7 +130,8 @@ int main(int argc, char** argv) {
         runner::TrialSpec spec;
         spec.pair_index = pair;
         spec.system = system;
-        const runner::TrialResult r = runner::RunTrial(task, hmmwv, spec, rules, soil ? &*soil : nullptr);
+        const runner::TrialResult r =
+            runner::RunTrial(task, hmmwv, spec, rules, soil ? &*soil : nullptr);
         rtf.push_back(r.real_time_factor);
         controller_s += timings.controller_s;
         wall_s += r.wall_time_s;

@@ -28,7 +28,8 @@ void BicycleModel::Step(int /*step*/, const PlannerState* states, const MppiCont
         ds / wheelbase *
         std::tan(static_cast<float>(params_.wheel_angle_per_steer_rad * controls[k][kMppiSteer]));
     const double direction =
-        params_.original_step_direction ? s.yaw_rad + dyaw / kOriginalYawScale : s.yaw_rad + 0.5 * dyaw;
+        params_.original_step_direction ? s.yaw_rad + dyaw / kOriginalYawScale
+                                        : s.yaw_rad + 0.5 * dyaw;
     const float direction_f = static_cast<float>(direction);   // |direction| < 10 rad here
     PlannerState& n = next[k];
     n = s;

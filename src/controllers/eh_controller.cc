@@ -86,7 +86,8 @@ EhDecision EhController::Decide(const Vec2& position_m, double yaw_rad) const {
   }
   d.chosen = EhChooseRegion(d.mean_m.data(), d.var_m2.data(), params_.num_regions, d.under_mean_m);
   const double lateral = (half - d.chosen) * size;
-  d.target_m = position_m + Vec2(cos_yaw * size - sin_yaw * lateral, sin_yaw * size + cos_yaw * lateral);
+  d.target_m = position_m + Vec2(cos_yaw * size - sin_yaw * lateral,
+                                 sin_yaw * size + cos_yaw * lateral);
   const Vec2 to_target = d.target_m - position_m;
   d.terrain_error_rad = WrapAngle(std::atan2(to_target.y(), to_target.x()) - yaw_rad);
   return d;
@@ -94,10 +95,11 @@ EhDecision EhController::Decide(const Vec2& position_m, double yaw_rad) const {
 
 Command EhController::Update(const Observation& obs) {
   last_ = Decide(obs.position_W.head<2>(), obs.rpy.yaw_rad);
-  const double error =
-      params_.terrain_weight * last_.terrain_error_rad + params_.path_weight * obs.heading_error_rad;
+  const double error = params_.terrain_weight * last_.terrain_error_rad +
+                       params_.path_weight * obs.heading_error_rad;
   const double max_change = params_.steering_rate_per_s * context_.control_period_s;
-  steering_ = std::clamp(params_.steering_kp * error, steering_ - max_change, steering_ + max_change);
+  steering_ = std::clamp(params_.steering_kp * error, steering_ - max_change,
+                         steering_ + max_change);
   steering_ = std::clamp(steering_, -1.0, 1.0);
   Command command;
   command.steering = steering_;

@@ -67,7 +67,9 @@ TEST(EhControllerTest, PicksTheRegionAtTheVehiclesHeightAndTheFlatterOnATie) {
   // the variance).
   const terrain::TaskSpec rough = WorldOf([](double x, double y) {
     if (x > 4.5 && x < 12.0 && y > -3.0) return 2.0;
-    if (x > 4.5 && x < 12.0 && y > -9.0) return (static_cast<int>(std::floor(x)) % 2 == 0) ? 0.5 : -0.5;
+    if (x > 4.5 && x < 12.0 && y > -9.0) {
+      return (static_cast<int>(std::floor(x)) % 2 == 0) ? 0.5 : -0.5;
+    }
     return 0.0;
   });
   const terrain::GroundTruthMaps rough_maps(rough);

@@ -47,7 +47,9 @@ const Tables& Zig() {
 }
 
 // Uniform in (0, 1): never 0, so its log is finite.
-double OpenUniform(Rng* rng) { return (static_cast<double>(rng->NextU64() >> 11) + 0.5) * 0x1.0p-53; }
+double OpenUniform(Rng* rng) {
+  return (static_cast<double>(rng->NextU64() >> 11) + 0.5) * 0x1.0p-53;
+}
 
 }  // namespace
 
