@@ -31,10 +31,13 @@ Observation ObsAt(double t, const Vec2& local_goal, double yaw, double speed) {
 }
 
 TEST(PidControllerTest, RegistryKnowsPid) {
-  EXPECT_EQ(ControllerNames(), std::vector<std::string>{"pid"});
-  ASSERT_NE(MakeController("pid"), nullptr);
-  EXPECT_EQ(MakeController("pid")->name(), "pid");
-  EXPECT_EQ(MakeController("mppi"), nullptr);
+  EXPECT_EQ(ControllerNames(),
+            (std::vector<std::string>{"pid", "eh", "mppi", "eh_original", "mppi_original"}));
+  for (const std::string& name : ControllerNames()) {
+    ASSERT_NE(MakeController(name), nullptr) << name;
+    EXPECT_EQ(MakeController(name)->name(), name);
+  }
+  EXPECT_EQ(MakeController("tal"), nullptr);
 }
 
 TEST(PidControllerTest, GoalToTheLeftSteersLeftAndRightSteersRight) {

@@ -125,4 +125,29 @@ TEST_F(VbRunTest, ShortRunWritesResultsAndRerunsAreIdentical) {
   }
 }
 
+// The classical baselines through the command line: each runs, is named in the record's file
+// and JSON, and reruns are identical (their sampling is seeded by the trial seed).
+TEST_F(VbRunTest, EhAndMppiRunAndRerunIdentically) {
+  for (const std::string system : {"eh", "mppi"}) {
+    const std::string common = kTask + " --vehicle hmmwv --pair 0 --seed 3 --time-limit 3 " +
+                               "--system " + system + " --quiet --out ";
+    const Outcome a = RunVbRun(common + (dir_ / (system + "a")).string());
+    ASSERT_EQ(a.exit_code, 0) << a.output;
+    const Outcome b = RunVbRun(common + (dir_ / (system + "b")).string());
+    ASSERT_EQ(b.exit_code, 0) << b.output;
+    const std::string stem = "env042_p0_s3_hmmwv_" + system;
+    const fs::path ja = dir_ / (system + "a") / (stem + ".json");
+    ASSERT_TRUE(fs::exists(ja)) << system;
+    EXPECT_NE(ReadFile(ja).find("\"system\": \"" + system + "\""), std::string::npos);
+    EXPECT_EQ(StableJsonLines(ja), StableJsonLines(dir_ / (system + "b") / (stem + ".json")));
+    const std::string traj = ReadFile(dir_ / (system + "a") / (stem + "_traj.csv"));
+    EXPECT_EQ(traj, ReadFile(dir_ / (system + "b") / (stem + "_traj.csv")));
+    EXPECT_EQ(std::count(traj.begin(), traj.end(), '\n'), 602);   // header + steps 0..600
+  }
+  // and the two systems drive differently from PID and from each other
+  const std::string traj_eh = ReadFile(dir_ / "eha" / "env042_p0_s3_hmmwv_eh_traj.csv");
+  const std::string traj_mppi = ReadFile(dir_ / "mppia" / "env042_p0_s3_hmmwv_mppi_traj.csv");
+  EXPECT_NE(traj_eh, traj_mppi);
+}
+
 }  // namespace

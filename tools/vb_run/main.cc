@@ -28,7 +28,9 @@ Runs navigation trials on TASK (a task file, e.g. tasks/env042.yaml) and writes 
 options:
   --vehicle NAME     vehicle description $VB_DATA_DIR/vehicles/NAME.yaml (required);
                      VB_DATA_DIR defaults to the source tree's data/ directory
-  --system NAME      mobility system (default: pid)
+  --system NAME      mobility system (default: pid): pid, eh, mppi (the paper's classical
+                     baselines), eh_original, mppi_original (the original code's variants,
+                     docs/baselines.md)
   --soil NAME        soil parameters $VB_DATA_DIR/soils/NAME.yaml for tasks with mud, sand or
                      snow patches (default: verti_bench, the original's three soils)
   --perception NAME  what the system sees: none (ground truth, default), a preset of

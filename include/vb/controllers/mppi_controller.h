@@ -1,0 +1,67 @@
+// MPPI baseline (reference_verti_bench.md §7.3): the MPPI core with the kinematic bicycle model
+// and the goal + obstacle cost, replanned at 20 Hz towards the observation's local goal (10 m *
+// scale ahead on the A* path); steering = the first planned command, held between updates, no
+// rate limit; throttle and brake from the fixed-speed controller (4 m/s), as the original, whose
+// own speed output is computed but never used. docs/baselines.md: parameters and quirks.
+#pragma once
+
+#include <memory>
+#include <optional>
+
+#include "vb/controllers/bicycle_model.h"
+#include "vb/controllers/controller.h"
+#include "vb/controllers/mppi_core.h"
+#include "vb/controllers/mppi_goal_cost.h"
+
+namespace vb::controllers {
+
+struct MppiControllerParams {
+  MppiParams core;
+  BicycleModelParams model;                 // model.scale is set from the episode
+  GoalObstacleCostParams cost;
+  double update_period_s = 0.05;            // 20 Hz
+  // Within this distance of the local goal the speed bounds widen to [-1, 1] (the original's
+  // rule; the local goal is 10 m ahead except at the end of the path). Multiplied by the scale.
+  double near_goal_m = 2.0;
+  MppiControl near_goal_u_min = {-1.0, -1.0};
+  MppiControl near_goal_u_max = {1.0, 1.0};
+  double target_speed_mps = 4.0;
+  double speed_kp = 1.0;
+  double lookahead_m = 10.0;                // multiplied by the environment scale
+  double replan_period_s = 0.1;
+  uint64_t seed_salt = 0x4D505049ull;       // "MPPI": its noise stream differs from other users'
+};
+
+// The published behaviour (the intent): costs summed over the horizon, textbook control cost and
+// warm start, obstacle map looked up where the rollout is, steps along the heading.
+MppiControllerParams MppiIntentParams();
+// The original's code: last-step-only cost, |.|/2 control cost, cyclic roll, transposed obstacle
+// lookup, sideways step direction, 1e-6 weight floor.
+MppiControllerParams MppiOriginalParams();
+
+class MppiController : public Controller {
+ public:
+  explicit MppiController(const MppiControllerParams& params = MppiIntentParams(),
+                          std::string name = "mppi");
+  std::string name() const override { return name_; }
+  ObservationConfig observation_config() const override;
+  void Reset(const EpisodeContext& context) override;
+  Command Update(const Observation& obs) override;
+  std::unique_ptr<Controller> Clone() const override;
+
+  const MppiCore& core() const { return core_; }
+  long updates() const { return updates_; }
+
+ private:
+  MppiControllerParams params_;
+  std::string name_;
+  EpisodeContext context_;
+  MppiCore core_;
+  BicycleModel model_;
+  std::optional<GoalObstacleCost> cost_;
+  double last_update_s_ = -1e9;
+  double steering_ = 0.0;
+  long updates_ = 0;
+};
+
+}  // namespace vb::controllers
