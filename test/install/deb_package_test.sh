@@ -31,13 +31,14 @@ for p in libbullet libyaml-cpp libopencv-core libopencv-imgproc libopencv-imgcod
   echo "$depends" | grep -q "$p" || fail "Depends lacks $p"
 done
 # Every shared library a tool needs comes from a package named in Depends.
+echo "$depends" | tr ',' '\n' | awk '{print $1}' > "$tmp/depends"
 dpkg-deb -x "$deb" "$tmp/root"
 for lib in $(objdump -p "$tmp"/root/usr/bin/vb_* | awk '/NEEDED/ {print $2}' | sort -u); do
   path=$(ldconfig -p | awk -v l="$lib" '$1 == l && /x86-64|x86_64|AArch64|aarch64/ {print $NF; exit}')
   [ -n "$path" ] || fail "$lib: not found by ldconfig"
   pkg=$(dpkg -S "$(readlink -f "$path")" 2>/dev/null | head -1 | cut -d: -f1) \
     || pkg=$(dpkg -S "$path" | head -1 | cut -d: -f1)
-  echo "$depends" | grep -qE "(^|, )$pkg( |,|$)" || fail "$lib ($pkg) is not in Depends"
+  grep -qxF "$pkg" "$tmp/depends" || fail "$lib ($pkg) is not in Depends"
 done
 # The unpacked package runs as installed: /usr/bin/vb_run with /usr/share/vb next to it.
 mkdir "$tmp/work"
