@@ -23,8 +23,6 @@ install(FILES ${VB_USER_DOCS} DESTINATION share/doc/vb/docs)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/docs/img/ DESTINATION share/doc/vb/docs/img)
 
 file(MAKE_DIRECTORY ${PROJECT_BINARY_DIR}/share/vb)
-foreach(_d data tasks web)
-  if(NOT EXISTS ${PROJECT_BINARY_DIR}/share/vb/${_d})
-    file(CREATE_LINK ${PROJECT_SOURCE_DIR}/${_d} ${PROJECT_BINARY_DIR}/share/vb/${_d} SYMBOLIC)
-  endif()
+foreach(_d data tasks web)   # (re)made at every configure: follows a moved source tree
+  file(CREATE_LINK ${PROJECT_SOURCE_DIR}/${_d} ${PROJECT_BINARY_DIR}/share/vb/${_d} SYMBOLIC)
 endforeach()

@@ -27,7 +27,8 @@ if [ -n "$(git status --porcelain --untracked-files=no)" ]; then
 fi
 head=$(git rev-parse --short=12 HEAD)
 built=$(build/tools/vb_run --version 2>/dev/null || true)
-if [ "$built" != "vb_run $(sed -n 's/^project(vb VERSION \([0-9.]*\).*/\1/p' CMakeLists.txt) (git $head)" ]; then
+version=$(sed -n 's/^project(vb VERSION \([0-9.]*\).*/\1/p' CMakeLists.txt)
+if [ "$built" != "vb_run $version (git $head)" ]; then
   echo "make_results: build/ is not a build of HEAD ($head): '$built'; run cmake --build build" >&2
   exit 2
 fi
@@ -42,7 +43,8 @@ case "$name" in
   classical_hmmwv)
     batch --systems pid,eh,mppi --pairs 0,2,5,7 --traj-every 10 --out "$tmp/run"
     batch --systems mppi_original --pairs 0,5 --traj-every 10 --out "$tmp/mppi_original"
-    topdown=env011_p0_s0_hmmwv_pid,env011_p0_s0_hmmwv_eh,env042_p0_s0_hmmwv_pid,env042_p0_s0_hmmwv_mppi ;;
+    topdown=env011_p0_s0_hmmwv_pid,env011_p0_s0_hmmwv_eh
+    topdown+=,env042_p0_s0_hmmwv_pid,env042_p0_s0_hmmwv_mppi ;;
   robustness_pid)
     batch --pairs 0,5 --perception none,mild,moderate,severe --traj-every 20 --out "$tmp/run"
     topdown="" ;;

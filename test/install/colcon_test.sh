@@ -13,8 +13,11 @@ trap 'rm -rf "$tmp"' EXIT
 mkdir -p "$tmp/ws/src/vb"
 (cd "$src" && git ls-files -z | xargs -0 cp --parents -t "$tmp/ws/src/vb")   # tracked files only
 cd "$tmp/ws"
-colcon build --cmake-args -DCMAKE_BUILD_TYPE=Release -DVB_BUILD_TESTS=OFF -G Ninja \
-  > "$tmp/colcon.log" 2>&1 || { tail -50 "$tmp/colcon.log"; echo "ColconTest: FAIL: colcon build"; exit 1; }
+# MAKEFLAGS: colcon's default adds -l<cores>, which on a busy machine builds one file at a time.
+MAKEFLAGS="-j$(nproc)" colcon build \
+  --cmake-args -DCMAKE_BUILD_TYPE=Release -DVB_BUILD_TESTS=OFF -G Ninja \
+  > "$tmp/colcon.log" 2>&1 \
+  || { tail -50 "$tmp/colcon.log"; echo "ColconTest: FAIL: colcon build"; exit 1; }
 mv "$tmp/ws/src" "$tmp/src_moved_away"
 rm -rf "$tmp/ws/build"
 mkdir "$tmp/elsewhere" && cd "$tmp/elsewhere"

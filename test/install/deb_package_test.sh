@@ -17,8 +17,8 @@ fail() { echo "DebPackageTest: FAIL: $*" >&2; exit 1; }
 deb=$(ls "$tmp"/out/vb_*.deb)
 echo "DebPackageTest: $(basename "$deb") $(du -h "$deb" | cut -f1)"
 dpkg-deb -c "$deb" | awk '{print $NF}' > "$tmp/contents"
-for f in ./usr/bin/vb_run ./usr/bin/vb_batch ./usr/bin/vb_report ./usr/bin/vb_view ./usr/bin/vb_gym \
-         ./usr/bin/vb_gen ./usr/bin/vb_import ./usr/share/vb/tasks/env042.yaml \
+for f in ./usr/bin/vb_run ./usr/bin/vb_batch ./usr/bin/vb_report ./usr/bin/vb_view \
+         ./usr/bin/vb_gym ./usr/bin/vb_gen ./usr/bin/vb_import ./usr/share/vb/tasks/env042.yaml \
          ./usr/share/vb/data/vehicles/hmmwv.yaml ./usr/share/vb/data/worlds/env042.png \
          ./usr/share/vb/data/soils/verti_bench.yaml ./usr/share/vb/web/viewer/index.html \
          ./usr/share/doc/vb/README.md; do
@@ -34,7 +34,7 @@ done
 echo "$depends" | tr ',' '\n' | awk '{print $1}' > "$tmp/depends"
 dpkg-deb -x "$deb" "$tmp/root"
 for lib in $(objdump -p "$tmp"/root/usr/bin/vb_* | awk '/NEEDED/ {print $2}' | sort -u); do
-  path=$(ldconfig -p | awk -v l="$lib" '$1 == l && /x86-64|x86_64|AArch64|aarch64/ {print $NF; exit}')
+  path=$(ldconfig -p | awk -v l="$lib" '$1 == l && /x86-64|AArch64/ {print $NF; exit}')
   [ -n "$path" ] || fail "$lib: not found by ldconfig"
   pkg=$(dpkg -S "$(readlink -f "$path")" 2>/dev/null | head -1 | cut -d: -f1) \
     || pkg=$(dpkg -S "$path" | head -1 | cut -d: -f1)
