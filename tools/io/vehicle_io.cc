@@ -187,7 +187,8 @@ vehicles::SuspensionParams ReadSuspension(const StrictNode& node, bool steered) 
     const StrictMap m =
         air ? node.AsMap({"model", "spring_stiffness_npm", "spring_preload_n",
                           "spring_design_length_m", "motion_ratio", "damping_nspm",
-                          "steering_arm_m", "anti_roll_bar_npm", "bump_travel_m", "rebound_travel_m",
+                          "steering_arm_m", "anti_roll_bar_npm", "bump_travel_m",
+                          "rebound_travel_m",
                           "stop_deflection_m", "stop_force_n", "carrier_mass_kg",
                           "carrier_inertia_kgm2"})
             : node.AsMap({"model", "spring_stiffness_npm", "spring_free_length_m",
@@ -573,7 +574,9 @@ vehicles::VehicleParams LoadVehicle(const std::string& path) {
   if (top.Has("max_step_s")) {
     const StrictNode step = top.Required("max_step_s");
     v.max_step_s = step.AsPositive();
-    if (v.max_step_s < 1e-4) step.Fail("must be at least 1e-4 s, got " + FormatDouble(v.max_step_s));
+    if (v.max_step_s < 1e-4) {
+      step.Fail("must be at least 1e-4 s, got " + FormatDouble(v.max_step_s));
+    }
   }
   v.chassis = ReadChassis(top.Required("chassis"));
   v.axles = ReadAxles(top.Required("axles"));
