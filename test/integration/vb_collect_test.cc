@@ -154,7 +154,7 @@ TEST_F(VbCollectTest, BadInputIsRefusedWithExitCode2) {
 TEST_F(VbCollectTest, FailureWindowsEndAtTheTrialsEndWithTheirLabel) {
   const fs::path batch = root_ / "batch";
   const Outcome b = Sh(kBatch + " " VB_SOURCE_DIR "/tasks/env010.yaml " VB_SOURCE_DIR
-                       "/tasks/env042.yaml --pairs 0,1 --time-limit 32 --traj-every 0 --quiet "
+                       "/tasks/env042.yaml --pairs 0,1 --time-limit 32 --traj-every 20 --quiet "
                        "--jobs 2 --out " + batch.string());
   ASSERT_EQ(b.exit_code, 0) << b.output;
   const fs::path out = root_ / "failures";
