@@ -231,7 +231,8 @@ EpisodeRecord RecordEpisode(runner::Episode& episode, SamplePolicy& policy,
   long interval_steps = 0;
   Vec2 prev_xy = Vec2::Zero();
 
-  auto close_interval = [&](const controllers::Observation& obs, long k, const std::string& status) {
+  auto close_interval = [&](const controllers::Observation& obs, long k,
+                            const std::string& status) {
     std::vector<double> action;
     if (kind == ActionKind::kSpeed) {
       action = held;
@@ -287,7 +288,8 @@ EpisodeRecord RecordEpisode(runner::Episode& episode, SamplePolicy& policy,
   const long k_end = episode.physics_steps();
   // The end state closes the last interval (unless the trial never reached the window, or the
   // last sample is already the end, which happens only when the episode ended before stepping).
-  if (interval_start >= 0 && interval_start < k_end && result.status != runner::TrialStatus::kSimError) {
+  if (interval_start >= 0 && interval_start < k_end &&
+      result.status != runner::TrialStatus::kSimError) {
     take_sample(k_end, status);
   }
   // sim_error: the end state may be non-finite; no transition goes into it, and the status marks

@@ -193,7 +193,8 @@ TEST(DatasetSpacesTest, SerialisationIsMinariJson) {
   c.crops = {{"semantics", terrain::MapLayer::kSemantics, 2, 0.5}};
   const std::string obs = dataset::ObservationSpaceJson(c, 4);
   EXPECT_NE(obs.find("\"type\": \"Dict\""), std::string::npos);
-  EXPECT_NE(obs.find("\"semantics\": {\"type\": \"Box\", \"dtype\": \"float32\", \"shape\": [2, 2], "
+  EXPECT_NE(obs.find("\"semantics\": {\"type\": \"Box\", \"dtype\": \"float32\", "
+                     "\"shape\": [2, 2], "
                      "\"low\": [[0.0, 0.0], [0.0, 0.0]], \"high\": [[9.0, 9.0], [9.0, 9.0]]}"),
             std::string::npos)
       << obs;

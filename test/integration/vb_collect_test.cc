@@ -78,7 +78,8 @@ TEST_F(VbCollectTest, ExplorationIsDeterministic) {
   // Both worlds are outside the benchmark's seeds, and every episode names its world.
   EXPECT_TRUE(fs::exists(root_ / "full" / "worlds" / "gen_low_rigid_sparse_s1000.yaml"));
   EXPECT_TRUE(fs::exists(root_ / "full" / "worlds" / "gen_mid_rigid_sparse_s1001.yaml"));
-  const auto a = vb::io::ReadEpisodeAttributes((root_ / "full" / "episodes" / "ep0000004.h5").string());
+  const auto a =
+      vb::io::ReadEpisodeAttributes((root_ / "full" / "episodes" / "ep0000004.h5").string());
   EXPECT_EQ(a.at("world_seed"), "1001");
   EXPECT_EQ(a.at("pair"), "1");
   EXPECT_EQ(a.at("seed"), "100101");

@@ -243,7 +243,9 @@ std::map<std::string, std::string> GroupAttributes(hid_t group, const std::strin
 herr_t CollectDatasets(hid_t group, const char* name, const H5L_info_t*, void* data) {
   const hid_t obj = H5Oopen(group, name, H5P_DEFAULT);
   if (obj < 0) return -1;
-  if (H5Iget_type(obj) == H5I_DATASET) static_cast<std::vector<std::string>*>(data)->push_back(name);
+  if (H5Iget_type(obj) == H5I_DATASET) {
+    static_cast<std::vector<std::string>*>(data)->push_back(name);
+  }
   H5Oclose(obj);
   return 0;
 }
@@ -327,19 +329,21 @@ EpisodeRecord ReadEpisodeFile(const std::string& path) {
       else if (cls == H5T_ENUM) ct = ColumnType::kBool;
       else if (cls == H5T_INTEGER) ct = bytes == 1 ? ColumnType::kInt8 : ColumnType::kInt32;
       Column& c = r.Add(name, ct, row_shape);
-      herr_t st = 0;
+      void* buffer = nullptr;
+      hid_t mem_type = H5T_NATIVE_DOUBLE;
       switch (ct) {
-        case ColumnType::kFloat32: c.f32.resize(total);
-          st = total ? H5Dread(d.get(), H5T_NATIVE_FLOAT, H5S_ALL, H5S_ALL, H5P_DEFAULT, c.f32.data()) : 0; break;
-        case ColumnType::kFloat64: c.f64.resize(total);
-          st = total ? H5Dread(d.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, c.f64.data()) : 0; break;
-        case ColumnType::kInt8: c.i8.resize(total);
-          st = total ? H5Dread(d.get(), H5T_NATIVE_INT8, H5S_ALL, H5S_ALL, H5P_DEFAULT, c.i8.data()) : 0; break;
-        case ColumnType::kBool: c.i8.resize(total);
-          st = total ? H5Dread(d.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, c.i8.data()) : 0; break;
-        case ColumnType::kInt32: c.i32.resize(total);
-          st = total ? H5Dread(d.get(), H5T_NATIVE_INT32, H5S_ALL, H5S_ALL, H5P_DEFAULT, c.i32.data()) : 0; break;
+        case ColumnType::kFloat32: c.f32.resize(total); buffer = c.f32.data();
+                                   mem_type = H5T_NATIVE_FLOAT; break;
+        case ColumnType::kFloat64: c.f64.resize(total); buffer = c.f64.data(); break;
+        case ColumnType::kInt8: c.i8.resize(total); buffer = c.i8.data();
+                                mem_type = H5T_NATIVE_INT8; break;
+        case ColumnType::kBool: c.i8.resize(total); buffer = c.i8.data();
+                                mem_type = type.get(); break;
+        case ColumnType::kInt32: c.i32.resize(total); buffer = c.i32.data();
+                                 mem_type = H5T_NATIVE_INT32; break;
       }
+      const herr_t st =
+          total > 0 ? H5Dread(d.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, buffer) : 0;
       NeedOk(st, path, "read " + name);
     }
   } catch (const IoError& e) {

@@ -319,7 +319,8 @@ int Run(const Options& o) {
                          " traj_every=" + std::to_string(o.traj_every) + " soil=" + o.soil + ":" +
                          vb::io::FileFnv1a64Hex(DataDir() + "/soils/" + o.soil + ".yaml");
   for (const std::string& v : spec.vehicles) {
-    settings += " vehicle=" + v + ":" + vb::io::FileFnv1a64Hex(DataDir() + "/vehicles/" + v + ".yaml");
+    settings +=
+        " vehicle=" + v + ":" + vb::io::FileFnv1a64Hex(DataDir() + "/vehicles/" + v + ".yaml");
   }
   for (const std::string& p : spec.perceptions) {
     if (p == "none") continue;  // ground truth has no file (and older batches no such entry)

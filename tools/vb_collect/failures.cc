@@ -37,7 +37,9 @@ double BatchTimeLimit(const std::string& batch_dir, double fallback) {
   std::fclose(f);
   const std::string text(buf, n);
   const size_t at = text.find("time_limit_s=");
-  if (at == std::string::npos) throw vb::InputError(settings.string(), 1, "time_limit_s", "missing");
+  if (at == std::string::npos) {
+    throw vb::InputError(settings.string(), 1, "time_limit_s", "missing");
+  }
   return vb::io::ParseNonNegative("time_limit_s",
                                   text.substr(at + 13, text.find_first_of(" \n", at) - at - 13));
 }

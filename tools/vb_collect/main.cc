@@ -92,8 +92,9 @@ bool NeedsRun(const Options& o, long e, std::vector<std::string>* stale) {
 }
 
 // In a forked worker: records `items` (with their episodes to do), writes each episode file.
-[[noreturn]] void RunWorker(const Options& o, Mode& mode,
-                            const std::vector<std::pair<const WorkItem*, std::vector<long>>>& work) {
+using WorkList = std::vector<std::pair<const WorkItem*, std::vector<long>>>;
+
+[[noreturn]] void RunWorker(const Options& o, Mode& mode, const WorkList& work) {
   int code = 0;
   try {
     for (const auto& [item, todo] : work) {
@@ -132,7 +133,7 @@ int Run(const Options& o) {
   const std::vector<WorkItem>& items = mode->items();
 
   // Resume: what is left of this shard's items.
-  std::vector<std::pair<const WorkItem*, std::vector<long>>> todo;
+  WorkList todo;
   std::vector<std::string> stale;
   long total = 0, left = 0;
   for (size_t i = 0; i < items.size(); ++i) {
@@ -167,7 +168,7 @@ int Run(const Options& o) {
   std::vector<pid_t> workers;
   const pid_t parent = ::getpid();
   for (int j = 0; j < jobs && !todo.empty(); ++j) {
-    std::vector<std::pair<const WorkItem*, std::vector<long>>> mine;
+    WorkList mine;
     for (size_t t = static_cast<size_t>(j); t < todo.size(); t += static_cast<size_t>(jobs)) {
       mine.push_back(todo[t]);
     }

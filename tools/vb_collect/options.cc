@@ -60,6 +60,7 @@ Exit codes: 0 done, 2 bad input, 1 I/O or other errors, 128+signal when interrup
 
 Options ParseArgs(int argc, char** argv) {
   Options o;
+  constexpr double kMaxS = vb::runner::kMaxTimeLimit_s;
   vb::io::ArgReader args(argc, argv);
   bool have_mode = false;
   while (args.Next()) {
@@ -69,12 +70,14 @@ Options ParseArgs(int argc, char** argv) {
     else if (a == "--dataset-id") o.dataset_id = args.Value();
     else if (a == "--episodes") o.episodes = static_cast<long>(args.U64Value(1, 100000000));
     else if (a == "--world-seed") o.world_seed = args.U64Value();
-    else if (a == "--episodes-per-world") o.episodes_per_world = static_cast<int>(args.U64Value(1, 10));
-    else if (a == "--max-episode-s") o.max_episode_s = args.PositiveValueAtMost(vb::runner::kMaxTimeLimit_s);
+    else if (a == "--episodes-per-world") {
+      o.episodes_per_world = static_cast<int>(args.U64Value(1, 10));
+    }
+    else if (a == "--max-episode-s") o.max_episode_s = args.PositiveValueAtMost(kMaxS);
     else if (a == "--from") o.from_dir = args.Value();
-    else if (a == "--time-limit") o.time_limit_s = args.PositiveValueAtMost(vb::runner::kMaxTimeLimit_s);
+    else if (a == "--time-limit") o.time_limit_s = args.PositiveValueAtMost(kMaxS);
     else if (a == "--tasks") o.tasks_dir = args.Value();
-    else if (a == "--window-s") o.window_s = args.PositiveValueAtMost(vb::runner::kMaxTimeLimit_s);
+    else if (a == "--window-s") o.window_s = args.PositiveValueAtMost(kMaxS);
     else if (a == "--vehicle") o.vehicle = args.Value();
     else if (a == "--soil") o.soil = args.Value();
     else if (a == "--sample-period") o.sample_period_s = args.PositiveValueAtMost(60.0);
@@ -95,9 +98,9 @@ Options ParseArgs(int argc, char** argv) {
   }
   if (o.help) return o;
   if (o.mode != "explore" && o.mode != "failures") {
-    throw vb::InputError("", 0, "mode",
-                         (o.mode.empty() ? std::string("missing") : "'" + o.mode + "' is not valid") +
-                             "; one of explore | failures (see --help)");
+    const std::string what =
+        o.mode.empty() ? std::string("missing") : "'" + o.mode + "' is not valid";
+    throw vb::InputError("", 0, "mode", what + "; one of explore | failures (see --help)");
   }
   if (o.out_dir.empty()) throw vb::InputError("", 0, "--out", "required (see --help)");
   if (o.mode == "failures" && o.from_dir.empty()) {
