@@ -16,6 +16,7 @@
 
 #include "io/build_info.h"
 #include "io/cli_args.h"
+#include "io/data_dir.h"
 #include "io/hdf5_dataset.h"
 #include "io/output_dir.h"
 #include "io/yaml_strict.h"
@@ -31,10 +32,7 @@ namespace vb_collect {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-std::string DataDir() {
-  const char* env = std::getenv("VB_DATA_DIR");
-  return env != nullptr ? env : VB_SOURCE_DIR "/data";
-}
+std::string DataDir() { return vb::io::DataDir(); }
 
 void AddCommonAttributes(const Options& o, long index, uint64_t seed,
                          vb::dataset::EpisodeRecord* r) {

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "io/cli_args.h"
+#include "io/data_dir.h"
 #include "vb/batch/matrix.h"
 #include "vb/engine/error.h"
 #include "vb/engine/runner/episode.h"
@@ -40,7 +41,7 @@ Options:
   --time-limit T          failures: the trials' time limit when BATCH_DIR has no settings.txt
                           (a committed report keeps only index.csv; default 60)
   --tasks DIR             failures: where task files are found by name when a recorded path
-                          does not exist (default: the source tree's tasks/)
+                          does not exist (default: vb's tasks/, as vb_batch finds it)
   --vehicle NAME          data/vehicles/NAME.yaml (explore; default hmmwv)
   --soil NAME             data/soils/NAME.yaml for deformable patches (default verti_bench)
   --sample-period S       seconds between samples, a whole number of 5 ms steps (default 0.1)
@@ -106,7 +107,7 @@ Options ParseArgs(int argc, char** argv) {
   if (o.mode == "failures" && o.from_dir.empty()) {
     throw vb::InputError("", 0, "--from", "required in failures mode (see --help)");
   }
-  if (o.tasks_dir.empty()) o.tasks_dir = VB_SOURCE_DIR "/tasks";
+  if (o.tasks_dir.empty()) o.tasks_dir = vb::io::TasksDir();
   if (o.dataset_id.empty()) o.dataset_id = "vb/" + o.mode + "-v0";
   vb::batch::ParseShard(o.shard);   // validates
   MakeSampleConfig(o);              // validates crops and the sample period
