@@ -3,7 +3,7 @@
 # <prefix>/bin/vb_* read <prefix>/share/vb/{data,tasks,web}; so bin/ and share/vb are fixed
 # relative to each other (not GNUInstallDirs variables that could move one without the other).
 #
-#   bin/                  vb_run vb_batch vb_gen vb_import vb_report vb_view vb_gym
+#   bin/                  vb_run vb_batch vb_gen vb_import vb_report vb_view vb_gym vb_collect
 #   share/vb/data/        vehicles, soils, perception presets, the benchmark's height images
 #   share/vb/tasks/       the 100 benchmark tasks (their height images: ../data/worlds/)
 #   share/vb/web/viewer/  the 3-D viewer's static files (vb_view)
@@ -11,7 +11,7 @@
 #
 # The build tree mirrors the layout: build/share/vb/{data,tasks,web} are symlinks to the source
 # tree, so build/tools/vb_* find their files exactly as installed ones do.
-set(VB_TOOLS vb_run vb_batch vb_gen vb_import vb_report vb_view vb_gym)
+set(VB_TOOLS vb_run vb_batch vb_gen vb_import vb_report vb_view vb_gym vb_collect)
 install(TARGETS ${VB_TOOLS} RUNTIME DESTINATION bin)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/data/ DESTINATION share/vb/data)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/tasks/ DESTINATION share/vb/tasks

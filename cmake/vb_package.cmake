@@ -1,8 +1,8 @@
 # The Debian package: `cpack -G DEB` in the build directory after building writes
 # vb_<version>_<arch>.deb with everything cmake/vb_install.cmake installs, under /usr.
 # Depends are computed by dpkg-shlibdeps from the tools' shared libraries (on Debian 12:
-# libbullet3.24, libyaml-cpp0.7, libopencv-core406 / -imgproc406 / -imgcodecs406, libstdc++6,
-# libc6, libgcc-s1; the test DebPackageTest checks them). scripts/check_deb_clean_chroot.sh
+# libbullet3.24, libyaml-cpp0.7, libopencv-core406 / -imgproc406 / -imgcodecs406, libhdf5-103-1
+# (vb_collect), libstdc++6, libc6, libgcc-s1; the test DebPackageTest checks them). scripts/check_deb_clean_chroot.sh
 # installs the package with apt into a fresh Debian 12 chroot and runs the README's example.
 set(CPACK_PACKAGE_NAME vb)
 set(CPACK_PACKAGE_VERSION ${PROJECT_VERSION})
@@ -13,7 +13,7 @@ set(CPACK_PACKAGE_DESCRIPTION_SUMMARY
 set(CPACK_PACKAGE_DESCRIPTION
     "vb runs navigation trials of ground vehicles over rocky, vertically challenging worlds and \
 reports success, roll-overs and traversal times. Tools: vb_run, vb_batch, vb_report, vb_gen, \
-vb_import, vb_view, vb_gym; the 100 benchmark tasks are in /usr/share/vb/tasks.")
+vb_import, vb_view, vb_gym, vb_collect; the 100 benchmark tasks are in /usr/share/vb/tasks.")
 set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
 set(CPACK_GENERATOR DEB)
 set(CPACK_STRIP_FILES ON)

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs what vb needs to build and test on Debian 12 (bookworm): the Debian packages, then the
-# Python environment (.venv: the vb_gym package, editable, with numpy, gymnasium, h5py, pytest from
-# PyPI). Safe to re-run: installs only what is missing or changed. Needs root (or sudo) for apt.
+# Python environment (.venv: the vb_gym package, editable, with numpy, gymnasium, h5py, minari,
+# pytest from PyPI). Safe to re-run: installs only what is missing or changed. Needs root (or sudo) for apt.
 #
 #   scripts/setup.sh          what the build and the test suite need
 #   scripts/setup.sh --fuzz   also clang and its libFuzzer runtime, for the fuzz targets
@@ -23,6 +23,7 @@ packages=(
   libyaml-cpp-dev                # task and vehicle files
   libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev   # height images
   libgtest-dev                   # tests
+  libhdf5-dev                    # datasets (vb_collect, docs/datasets.md): HDF5 C library
   python3 python3-venv           # the Python package's virtual environment (.venv)
   nlohmann-json3-dev             # vb_gym protocol headers (JSON)
   chromium                       # headless-browser tests of the 3-D viewer (docs/viewer.md)
@@ -58,7 +59,7 @@ if [ ! -x "$venv/bin/python" ]; then
   /usr/bin/python3 -m venv "$venv"
 fi
 if [ "$(cat "$stamp" 2>/dev/null)" != "$want" ]; then
-  echo "setup: installing the vb_gym Python package into $venv (numpy, gymnasium, h5py, pytest)"
+  echo "setup: installing the vb_gym Python package into $venv (numpy, gymnasium, h5py, minari, pytest)"
   "$venv/bin/python" -m pip install -q --upgrade pip
   "$venv/bin/python" -m pip install -q -e "python[test,datasets]"
   echo "$want" > "$stamp"

@@ -3,8 +3,6 @@
 // docs/batch.md describes the flags, the directory layout, resume and shards. This file: the
 // output directory (lock, settings), the resume scan, the scheduler with its progress display,
 // and the index.
-#include <fcntl.h>
-#include <sys/file.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -24,6 +22,7 @@
 #include "io/batch_io.h"
 #include "io/perception_io.h"
 #include "io/cli_args.h"
+#include "io/output_dir.h"
 #include "io/result_io.h"
 #include "io/yaml_strict.h"
 #include "options.h"
@@ -58,41 +57,6 @@ struct Running {
   std::string stem;
   Clock::time_point start;
 };
-
-// Creates DIR and DIR/trials, takes DIR's lock (held until this process ends, even by kill -9),
-// removes temporary files of writers killed mid-write, and checks that the result-changing
-// settings match earlier runs into DIR. Returns the lock's file descriptor.
-int PrepareOutputDir(const Options& o, const std::string& settings) {
-  const fs::path out = o.out_dir;
-  std::error_code ec;
-  fs::create_directories(out / "trials", ec);
-  if (ec) throw vb::InputError(o.out_dir, 0, "--out", "cannot create directory: " + ec.message());
-  const std::string lock_path = (out / ".lock").string();
-  const int lock_fd = ::open(lock_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-  if (lock_fd < 0 || ::flock(lock_fd, LOCK_EX | LOCK_NB) != 0) {
-    throw vb::InputError(o.out_dir, 0, "--out", "another vb_batch is running on this directory");
-  }
-  for (const fs::directory_entry& d : fs::directory_iterator(out / "trials")) {
-    if (d.path().filename().string().find(".tmp.") != std::string::npos) fs::remove(d.path(), ec);
-  }
-  const fs::path settings_path = out / "settings.txt";
-  if (fs::exists(settings_path)) {
-    std::FILE* f = std::fopen(settings_path.c_str(), "rb");
-    char buf[256] = {0};
-    const size_t n = f ? std::fread(buf, 1, sizeof(buf) - 1, f) : 0;
-    if (f) std::fclose(f);
-    std::string old(buf, n);
-    while (!old.empty() && old.back() == '\n') old.pop_back();
-    if (old != settings) {
-      throw vb::InputError(settings_path.string(), 1, "settings",
-                           "results in this directory were made with '" + old + "', this run "
-                           "uses '" + settings + "'; use another --out");
-    }
-  } else {
-    vb::io::WriteFileAtomic(settings_path.string(), settings + "\n");
-  }
-  return lock_fd;
-}
 
 struct Plan {
   std::vector<vb::batch::TrialKey> todo;
@@ -355,14 +319,15 @@ int Run(const Options& o) {
                          " traj_every=" + std::to_string(o.traj_every) + " soil=" + o.soil + ":" +
                          vb::io::FileFnv1a64Hex(DataDir() + "/soils/" + o.soil + ".yaml");
   for (const std::string& v : spec.vehicles) {
-    settings += " vehicle=" + v + ":" + vb::io::FileFnv1a64Hex(DataDir() + "/vehicles/" + v + ".yaml");
+    settings +=
+        " vehicle=" + v + ":" + vb::io::FileFnv1a64Hex(DataDir() + "/vehicles/" + v + ".yaml");
   }
   for (const std::string& p : spec.perceptions) {
     if (p == "none") continue;  // ground truth has no file (and older batches no such entry)
     settings += " perception=" + p + ":" +
                 vb::io::FileFnv1a64Hex(vb::io::PerceptionFile(p, DataDir()));
   }
-  const int lock_fd = PrepareOutputDir(o, settings);
+  const int lock_fd = vb::io::PrepareOutputDir(o.out_dir, "trials", settings, "vb_batch");
   const vb::io::Provenance build = ProvenanceFor(spec.tasks.front(), all.front());
   const Plan plan = PlanResume(o, spec, mine, build);
 

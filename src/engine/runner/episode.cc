@@ -299,7 +299,7 @@ void Episode::Impl::PhysicsStep() {
   // Success, then the early ends of certain failures, then the time limit.
   const Vec2 xy = s.pose_W.position.head<2>();
   progress.final_goal_distance_m = (goal_m - xy).norm();
-  if (progress.final_goal_distance_m <= goal_radius_m) {
+  if (rules.goal_ends_trial && progress.final_goal_distance_m <= goal_radius_m) {
     progress.status = TrialStatus::kSuccess;
     progress.traversal_time_s = t;
     progress.message = "reached the goal";

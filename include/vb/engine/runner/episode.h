@@ -67,6 +67,9 @@ struct EpisodeRules {
   double stuck_distance_m = 1.0;       // scaled by task.scale
   double start_height_m = 0.5;         // drop height of the wheel bottoms above the terrain
   bool end_early = true;               // stop once the failure is certain
+  // Reaching the goal radius ends the trial as success. Off only for data collection that is
+  // not about the goal (random exploration, docs/datasets.md): it drives until a failure.
+  bool goal_ends_trial = true;
   int trajectory_every_n_steps = 1;    // trajectory decimation; 0: no trajectory at all
   // What the mobility system sees (docs/perception.md); default: ground truth.
   PerceptionParams perception;

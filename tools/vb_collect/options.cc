@@ -1,0 +1,150 @@
+#include "options.h"
+
+#include <cmath>
+#include <string>
+
+#include "io/cli_args.h"
+#include "io/data_dir.h"
+#include "vb/batch/matrix.h"
+#include "vb/engine/error.h"
+#include "vb/engine/runner/episode.h"
+
+namespace vb_collect {
+
+const char* const kUsage = R"(usage:
+  vb_collect explore  --out DIR [--episodes N] [--world-seed S] [--episodes-per-world K]
+                      [--max-episode-s T] [options]
+  vb_collect failures --from BATCH_DIR --out DIR [--window-s W] [options]
+
+Collects a dataset for learning (docs/datasets.md) in Minari's HDF5 layout: DIR/episodes/ holds
+one file per episode (written atomically; a killed run resumes where it stopped), and when every
+episode is there DIR/data/main_data.hdf5 + DIR/data/metadata.json are assembled (minari
+.load_dataset, h5py, or vb_gym.datasets read them). The same command gives byte-identical files.
+
+Modes:
+  explore    random exploration (the paper's protocol): sinusoidal steering at a 2 m/s target
+             speed, amplitude and period drawn per episode from its seed; until rollover, stuck,
+             leaving the world, or --max-episode-s. Worlds made by the generator (vb_gen) from
+             seeds S, S+1, ... outside the benchmark's 0..99, written to DIR/worlds/.
+  failures   the last --window-s seconds of every rollover and stuck trial of a vb_batch results
+             directory, re-simulated from the trial's task, pair, seed and system (trials are
+             deterministic) and labelled with the failure type.
+
+Options:
+  --out DIR               output directory (required)
+  --episodes N            explore: number of episodes (default 10)
+  --world-seed S          explore: generator seed of the first world (default 1000)
+  --episodes-per-world K  explore: episodes per world, one per start/goal pair, 1..10 (default 10)
+  --max-episode-s T       explore: longest episode in simulated seconds (default 300)
+  --from BATCH_DIR        failures: a vb_batch results directory (trials/*.json, else index.csv)
+  --window-s W            failures: seconds before the trial's end to keep (default 10)
+  --time-limit T          failures: the trials' time limit when BATCH_DIR has no settings.txt
+                          (a committed report keeps only index.csv; default 60)
+  --tasks DIR             failures: where task files are found by name when a recorded path
+                          does not exist (default: vb's tasks/, as vb_batch finds it)
+  --vehicle NAME          data/vehicles/NAME.yaml (explore; default hmmwv)
+  --soil NAME             data/soils/NAME.yaml for deformable patches (default verti_bench)
+  --sample-period S       seconds between samples, a whole number of 5 ms steps (default 0.1)
+  --crops LIST            egocentric crops per sample: elevation, semantics, occupancy, friction
+                          (default elevation,semantics; elevation relative to the chassis)
+  --crop-size N           cells per crop side (default 64)
+  --crop-res M            cell side in metres, times the world scale (default 0.1)
+  --dataset-id ID         Minari dataset id (default vb/<mode>-v0)
+  --jobs J                worker processes (default 1)
+  --shard i/N             collect every N-th work item (world or trial) starting at i
+  --rerun-stale           replace episodes made by another build instead of stopping
+  --quiet                 no progress lines
+  --help                  this text
+
+Exit codes: 0 done, 2 bad input, 1 I/O or other errors, 128+signal when interrupted.
+)";
+
+Options ParseArgs(int argc, char** argv) {
+  Options o;
+  constexpr double kMaxS = vb::runner::kMaxTimeLimit_s;
+  vb::io::ArgReader args(argc, argv);
+  bool have_mode = false;
+  while (args.Next()) {
+    const std::string& a = args.arg();
+    if (a == "--help" || a == "-h") o.help = true;
+    else if (a == "--out") o.out_dir = args.Value();
+    else if (a == "--dataset-id") o.dataset_id = args.Value();
+    else if (a == "--episodes") o.episodes = static_cast<long>(args.U64Value(1, 100000000));
+    else if (a == "--world-seed") o.world_seed = args.U64Value();
+    else if (a == "--episodes-per-world") {
+      o.episodes_per_world = static_cast<int>(args.U64Value(1, 10));
+    }
+    else if (a == "--max-episode-s") o.max_episode_s = args.PositiveValueAtMost(kMaxS);
+    else if (a == "--from") o.from_dir = args.Value();
+    else if (a == "--time-limit") o.time_limit_s = args.PositiveValueAtMost(kMaxS);
+    else if (a == "--tasks") o.tasks_dir = args.Value();
+    else if (a == "--window-s") o.window_s = args.PositiveValueAtMost(kMaxS);
+    else if (a == "--vehicle") o.vehicle = args.Value();
+    else if (a == "--soil") o.soil = args.Value();
+    else if (a == "--sample-period") o.sample_period_s = args.PositiveValueAtMost(60.0);
+    else if (a == "--crops") o.crops = args.Value();
+    else if (a == "--crop-size") o.crop_size = static_cast<int>(args.U64Value(1, 1024));
+    else if (a == "--crop-res") o.crop_resolution_m = args.PositiveValueAtMost(100.0);
+    else if (a == "--jobs") o.jobs = static_cast<int>(args.U64Value(1, 1024));
+    else if (a == "--shard") o.shard = args.Value();
+    else if (a == "--rerun-stale") o.rerun_stale = true;
+    else if (a == "--quiet") o.quiet = true;
+    else if (args.IsFlag()) args.Unknown();
+    else if (!have_mode) {
+      o.mode = a;
+      have_mode = true;
+    } else {
+      throw vb::InputError("", 0, a, "unexpected argument (one mode: explore | failures)");
+    }
+  }
+  if (o.help) return o;
+  if (o.mode != "explore" && o.mode != "failures") {
+    const std::string what =
+        o.mode.empty() ? std::string("missing") : "'" + o.mode + "' is not valid";
+    throw vb::InputError("", 0, "mode", what + "; one of explore | failures (see --help)");
+  }
+  if (o.out_dir.empty()) throw vb::InputError("", 0, "--out", "required (see --help)");
+  if (o.mode == "failures" && o.from_dir.empty()) {
+    throw vb::InputError("", 0, "--from", "required in failures mode (see --help)");
+  }
+  if (o.tasks_dir.empty()) o.tasks_dir = vb::io::TasksDir();
+  if (o.dataset_id.empty()) o.dataset_id = "vb/" + o.mode + "-v0";
+  vb::batch::ParseShard(o.shard);   // validates
+  MakeSampleConfig(o);              // validates crops and the sample period
+  return o;
+}
+
+vb::dataset::SampleConfig MakeSampleConfig(const Options& o) {
+  vb::dataset::SampleConfig c;
+  const double step_s = vb::runner::EpisodeRules().step_s;
+  const double ratio = o.sample_period_s / step_s;
+  const long n = std::lround(ratio);
+  if (n < 1 || std::abs(ratio - static_cast<double>(n)) > 1e-9 * ratio) {
+    throw vb::InputError("", 0, "--sample-period",
+                         "must be a whole number of physics steps of 0.005 s");
+  }
+  c.sample_every_steps = static_cast<int>(n);
+  if (o.crops == "none") return c;
+  for (const std::string& name : vb::io::SplitList(o.crops, ',')) {
+    vb::dataset::CropSpec s;
+    s.name = name;
+    if (name == "elevation") s.layer = vb::terrain::MapLayer::kElevation;
+    else if (name == "semantics") s.layer = vb::terrain::MapLayer::kSemantics;
+    else if (name == "occupancy") s.layer = vb::terrain::MapLayer::kOccupancy;
+    else if (name == "friction") s.layer = vb::terrain::MapLayer::kFriction;
+    else {
+      throw vb::InputError("", 0, "--crops",
+                           "unknown layer '" + name +
+                               "'; valid: elevation, semantics, occupancy, friction, or none");
+    }
+    for (const vb::dataset::CropSpec& other : c.crops) {
+      if (other.name == name) throw vb::InputError("", 0, "--crops", "'" + name + "' given twice");
+    }
+    s.size_cells = o.crop_size;
+    s.resolution_m = o.crop_resolution_m;
+    c.crops.push_back(s);
+  }
+  return c;
+}
+
+}  // namespace vb_collect

@@ -1,0 +1,48 @@
+// vb_collect command line (docs/datasets.md): mode, flags, strict parsing (every error names
+// the flag, exit 2).
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "vb/dataset/recorder.h"
+
+namespace vb_collect {
+
+extern const char* const kUsage;
+
+struct Options {
+  std::string mode;                 // explore | failures
+  std::string out_dir;
+  std::string dataset_id;           // default vb/<mode>-v0
+  // explore
+  long episodes = 10;
+  uint64_t world_seed = 1000;       // first generator seed (the benchmark uses 0..99)
+  int episodes_per_world = 10;      // <= 10: one per start/goal pair
+  double max_episode_s = 300.0;
+  // failures
+  std::string from_dir;             // a vb_batch results directory
+  double window_s = 10.0;
+  double time_limit_s = 60.0;       // when the results directory has no settings.txt
+  std::string tasks_dir;            // task files by name when a recorded path does not exist
+  // common
+  std::string vehicle = "hmmwv";
+  std::string soil = "verti_bench";
+  double sample_period_s = 0.1;
+  std::string crops = "elevation,semantics";
+  int crop_size = 64;
+  double crop_resolution_m = 0.1;
+  int jobs = 1;
+  std::string shard = "0/1";
+  bool rerun_stale = false;
+  bool quiet = false;
+  bool help = false;
+};
+
+// Throws vb::InputError naming the flag.
+Options ParseArgs(int argc, char** argv);
+
+// The sample configuration of the options (crops, sample period in physics steps).
+vb::dataset::SampleConfig MakeSampleConfig(const Options& o);
+
+}  // namespace vb_collect
