@@ -21,6 +21,7 @@ packages=(
   libeigen3-dev                  # linear algebra
   libbullet-dev                  # multibody dynamics and body-body contact (float64 libraries)
   libyaml-cpp-dev                # task and vehicle files
+  libassimp-dev                  # obstacle meshes (OBJ, STL, glTF): tools/io/mesh_loader.cc
   libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev   # height images
   libgtest-dev                   # tests
   libhdf5-dev                    # datasets (vb_collect, docs/datasets.md): HDF5 C library

@@ -190,9 +190,20 @@ void WheelObstacleContacts(const Vec3& c, const Vec3& a, double r, double hw,
       const double in_norm = in_plane.norm();
       Vec3 p = c - hw * (na >= 0.0 ? 1.0 : -1.0) * a;
       if (in_norm > 1e-9) p -= r * in_plane / in_norm;
-      int face = 0;
-      const double d = o.shape.SignedDistance(p, &face);
-      if (d >= 0.0 || &o.shape.faces[static_cast<size_t>(face)] != &f) continue;
+      // p is inside with f its least penetrated face (the first of equals) iff every other face
+      // is deeper; checked face by face with an early exit (hulls have tens of faces)
+      const double d = f.normal.dot(p) - f.offset;
+      if (d >= 0.0) continue;
+      bool least = true;
+      for (const engine::ConvexShape::Face& g : o.shape.faces) {
+        if (&g == &f) continue;
+        const double dg = g.normal.dot(p) - g.offset;
+        if (dg > d || (dg == d && &g < &f)) {
+          least = false;
+          break;
+        }
+      }
+      if (!least) continue;
       BodyContact k;
       k.point_W = p;
       k.normal_W = f.normal;

@@ -11,6 +11,7 @@
 #include "vb/engine/error.h"
 #include "vb/engine/rng.h"
 #include "vb/terrain/grid_planner.h"
+#include "vb/terrain/obstacle_shape.h"
 
 namespace vb::terrain {
 namespace {
@@ -387,6 +388,7 @@ bool PlaceObstacles(Rng* rng, double layout_scale, const std::vector<StartGoalPa
 
 // Plans every pair on the inflated obstacle grid; false if any pair is disconnected.
 bool PlanAllPairs(TaskSpec* task) {
+  AssignShapeSeeds(task);
   const OccupancyGrid inflated = Inflate(RasterizeObstacles(*task), PlannerInflationCells(*task));
   for (StartGoalPair& pair : task->pairs) {
     auto path = PlanPath(inflated, pair.start_m, pair.goal_m);
@@ -452,6 +454,9 @@ TaskSpec GenerateTask(const GeneratorOptions& options) {
   task.labels = {options.elevation, options.terrain, options.density,
                  ClassesPresent(task.patches)};
   task.pairs = CirclePairs(kPairRadiusM * layout_scale);
+  // vb's obstacle family: boulders and trunks (obstacle_shape.h), seeded per rock
+  task.rock_shape.kind = ObstacleShapeKind::kBoulder;
+  task.tree_shape.kind = ObstacleShapeKind::kTrunk;
 
   int num_rocks = 0;
   int num_trees = 0;

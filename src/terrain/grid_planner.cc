@@ -6,6 +6,7 @@
 #include <queue>
 
 #include "vb/engine/error.h"
+#include "vb/terrain/obstacle_shape.h"
 
 namespace vb::terrain {
 namespace {
@@ -71,6 +72,32 @@ void MarkSquare(OccupancyGrid* grid, const Cell& centre, int half) {
   }
 }
 
+// The cells whose centres lie inside the outline (local polygon placed at `at`), and the cell
+// nearest `at`, so that an obstacle narrower than a cell still blocks one.
+void MarkOutline(OccupancyGrid* grid, const Vec2& at, const std::vector<Vec2>& local) {
+  MarkSquare(grid, grid->CellOf(at), 0);
+  std::vector<Vec2> outline = local;
+  Vec2 lo = at, hi = at;
+  for (Vec2& p : outline) {
+    p += at;
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const double x0 = -0.5 * grid->size_x_m, y0 = 0.5 * grid->size_y_m;
+  const int c0 = std::max(0, static_cast<int>(std::ceil((lo.x() - x0) / grid->cell_m - 1e-9)));
+  const int c1 = std::min(grid->cols - 1, static_cast<int>(std::floor((hi.x() - x0) / grid->cell_m + 1e-9)));
+  const int r0 = std::max(0, static_cast<int>(std::ceil((y0 - hi.y()) / grid->cell_m - 1e-9)));
+  const int r1 = std::min(grid->rows - 1, static_cast<int>(std::floor((y0 - lo.y()) / grid->cell_m + 1e-9)));
+  for (int r = r0; r <= r1; ++r) {
+    for (int c = c0; c <= c1; ++c) {
+      // a relative tolerance keeps a scaled world's footprint equal to the unscaled one
+      if (InsideConvexPolygon(outline, grid->CenterOf({r, c}), 1e-9 * grid->cell_m)) {
+        grid->occupied[static_cast<size_t>(r) * grid->cols + c] = 1;
+      }
+    }
+  }
+}
+
 }  // namespace
 
 Cell OccupancyGrid::CellOf(const Vec2& p_m) const {
@@ -93,16 +120,27 @@ OccupancyGrid RasterizeObstacles(const TaskSpec& task) {
   grid.size_x_m = task.size_x_m;
   grid.size_y_m = task.size_y_m;
   grid.occupied.assign(static_cast<size_t>(grid.rows) * grid.cols, 0);
-  for (const RockSpec& rock : task.rocks) {
-    // side in cells truncated as the original (3, 4, 5 at 1 m); the square [c - w/2, c + w/2]
-    // is then 3, 5, 5 cells wide
-    // (the tiny epsilon keeps a scaled world's footprint equal to the unscaled one when
-    // scale * 4.4 / cell_m is an integer up to rounding)
-    const int w = static_cast<int>(kRockSideM * rock.scale * task.scale / grid.cell_m + 1e-9);
-    MarkSquare(&grid, grid.CellOf(Vec2(rock.x_m, rock.y_m)), w / 2);
+  if (task.rock_shape.kind == ObstacleShapeKind::kBox) {
+    for (const RockSpec& rock : task.rocks) {
+      // side in cells truncated as the original (3, 4, 5 at 1 m); the square [c - w/2, c + w/2]
+      // is then 3, 5, 5 cells wide
+      // (the tiny epsilon keeps a scaled world's footprint equal to the unscaled one when
+      // scale * 4.4 / cell_m is an integer up to rounding)
+      const int w = static_cast<int>(kRockSideM * rock.scale * task.scale / grid.cell_m + 1e-9);
+      MarkSquare(&grid, grid.CellOf(Vec2(rock.x_m, rock.y_m)), w / 2);
+    }
+  } else {
+    for (const RockSpec& rock : task.rocks) {
+      MarkOutline(&grid, Vec2(rock.x_m, rock.y_m), Outline(RockShapePoints(task, rock)));
+    }
   }
-  for (const TreeSpec& tree : task.trees) {
-    MarkSquare(&grid, grid.CellOf(Vec2(tree.x_m, tree.y_m)), 0);
+  if (task.tree_shape.kind == ObstacleShapeKind::kBox) {
+    for (const TreeSpec& tree : task.trees) {
+      MarkSquare(&grid, grid.CellOf(Vec2(tree.x_m, tree.y_m)), 0);
+    }
+  } else {
+    const std::vector<Vec2> outline = Outline(TreeShapePoints(task));
+    for (const TreeSpec& tree : task.trees) MarkOutline(&grid, Vec2(tree.x_m, tree.y_m), outline);
   }
   return grid;
 }

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include <string>
+
+#include "vb/terrain/obstacle_shape.h"
 #include "vb/terrain/terrain_physics.h"
 
 namespace vb::terrain {
@@ -12,28 +15,62 @@ constexpr double kEdgeSampleSpacing_m = 0.05;   // at world scale 1
 constexpr double kCell_m = 8.0;                 // broadphase cell at world scale 1
 }  // namespace
 
+namespace {
+// A shape of local points (obstacle_shape.h) placed at (x, y), resting on the ground: its lowest
+// point at the lowest terrain height under its outline.
+engine::ConvexShape RestingHull(const Terrain& terrain, double x_m, double y_m,
+                                const std::vector<Vec3>& local, double spacing,
+                                const std::string& what) {
+  std::vector<Vec2> outline = Outline(local);
+  for (Vec2& p : outline) p += Vec2(x_m, y_m);
+  const double base_m = ObstacleBaseHeight(terrain, outline);
+  std::vector<Vec3> points = local;
+  for (Vec3& p : points) p += Vec3(x_m, y_m, base_m);
+  engine::ConvexShape hull = engine::MakeConvexHull(points, spacing, what);
+  // Bullet's hull computer rounds its vertices (~1e-4 of the extent): set the lowest one back
+  // onto the ground exactly
+  Pose lift;
+  lift.position = Vec3(0.0, 0.0, base_m - hull.aabb_min.z());
+  return hull.Transformed(lift);
+}
+}  // namespace
+
 ObstacleField::ObstacleField(const TaskSpec& task, const Terrain& terrain) {
   const double spacing = kEdgeSampleSpacing_m * task.scale;
-  // rocks and trees rest on the ground: bottom face at the lowest terrain point of the footprint
-  // (the original centred rocks on a height read at the wrong place, so they floated or sank by
-  // up to ~1 m, reference_verti_bench.md §2.8)
+  // Boxes (format v1): bottom face at the lowest terrain point of the square footprint (the
+  // original centred rocks on a height read at the wrong place, so they floated or sank by up to
+  // ~1 m, reference_verti_bench.md §2.8). Other shapes: their convex hull, lowest point at the
+  // lowest terrain point under their outline.
   for (size_t i = 0; i < task.rocks.size(); ++i) {
     const RockSpec& rock = task.rocks[i];
-    const Vec3 half_m = 0.5 * RockBoxSize(task, rock);
-    const Vec3 center(rock.x_m, rock.y_m,
-                      ObstacleBaseHeight(terrain, rock.x_m, rock.y_m, 2.0 * half_m.x()) +
-                          half_m.z());
-    obstacles_.push_back({engine::MakeBox(center, half_m, spacing), static_cast<int>(i),
-                          kObstacleFriction});
+    if (task.rock_shape.kind == ObstacleShapeKind::kBox) {
+      const Vec3 half_m = 0.5 * RockBoxSize(task, rock);
+      const Vec3 center(rock.x_m, rock.y_m,
+                        ObstacleBaseHeight(terrain, rock.x_m, rock.y_m, 2.0 * half_m.x()) +
+                            half_m.z());
+      obstacles_.push_back({engine::MakeBox(center, half_m, spacing), static_cast<int>(i),
+                            kObstacleFriction});
+    } else {
+      obstacles_.push_back({RestingHull(terrain, rock.x_m, rock.y_m, RockShapePoints(task, rock),
+                                        spacing, "obstacles.rocks[" + std::to_string(i) + "]"),
+                            static_cast<int>(i), kObstacleFriction});
+    }
   }
   const Vec3 tree_half_m = 0.5 * TreeBoxSize(task);
+  const std::vector<Vec3> tree_local = TreeShapePoints(task);
   for (size_t j = 0; j < task.trees.size(); ++j) {
     const TreeSpec& tree = task.trees[j];
-    const Vec3 center(tree.x_m, tree.y_m,
-                      ObstacleBaseHeight(terrain, tree.x_m, tree.y_m, 2.0 * tree_half_m.x()) +
-                          tree_half_m.z());
-    obstacles_.push_back({engine::MakeBox(center, tree_half_m, spacing),
-                          kTreeTagOffset + static_cast<int>(j), kObstacleFriction});
+    if (task.tree_shape.kind == ObstacleShapeKind::kBox) {
+      const Vec3 center(tree.x_m, tree.y_m,
+                        ObstacleBaseHeight(terrain, tree.x_m, tree.y_m, 2.0 * tree_half_m.x()) +
+                            tree_half_m.z());
+      obstacles_.push_back({engine::MakeBox(center, tree_half_m, spacing),
+                            kTreeTagOffset + static_cast<int>(j), kObstacleFriction});
+    } else {
+      obstacles_.push_back({RestingHull(terrain, tree.x_m, tree.y_m, tree_local, spacing,
+                                        "obstacles.trees[" + std::to_string(j) + "]"),
+                            kTreeTagOffset + static_cast<int>(j), kObstacleFriction});
+    }
   }
   // Broadphase grid over the world (obstacles may reach beyond its edge: clamped into it).
   cell_m_ = kCell_m * task.scale;

@@ -69,6 +69,9 @@ TaskSpec TaskFromOriginal(const OriginalConfig& config, const GrayImage& world,
   task.size_x_m = world.cols - 1.0;
   task.size_y_m = world.rows - 1.0;
   task.scale = 1.0;
+  // the original collides with boxes (reference_verti_bench.md §2.8): imported worlds keep them
+  task.rock_shape.kind = ObstacleShapeKind::kBox;
+  task.tree_shape.kind = ObstacleShapeKind::kBox;
   task.min_height_m = config.min_height_m;
   task.max_height_m = config.is_flat ? config.min_height_m : config.max_height_m;
   task.heights.rows = world.rows;

@@ -315,7 +315,8 @@ TEST_F(VbBatchTest, KilledWorkerBecomesCrashedTrialAndIsRetried) {
   const Outcome retry = Sh(cmd);
   ASSERT_EQ(retry.exit_code, 0) << retry.output;
   EXPECT_NE(retry.output.find("0 already done, 1 to run"), std::string::npos) << retry.output;
-  EXPECT_NE(ReadFile(dir / "trials/env042_p0_s0_hmmwv_pid.json").find("\"status\": \"stuck\""),
+  // the retried trial ran to its end (env042 pair 0 reaches the goal in 32 s among boulders)
+  EXPECT_NE(ReadFile(dir / "trials/env042_p0_s0_hmmwv_pid.json").find("\"status\": \"success\""),
             std::string::npos);
 }
 

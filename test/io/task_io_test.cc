@@ -485,7 +485,7 @@ TEST_F(TaskIoTest, ClassesLabelIsDerivedOrChecked) {
 }
 
 TEST_F(TaskIoTest, ErrorFormatAndVersion) {
-  ExpectError(Edit("version:", "version: 2"), 2, "version", "unsupported task format version 2");
+  ExpectError(Edit("version:", "version: 3"), 2, "version", "unsupported task format version 3");
   ExpectError(Edit("format:", "format: vb-tusk"), 1, "format", "expected format 'vb-task'");
   ExpectError(Edit("version:", ""), 1, "version", "missing required key");
 }
@@ -547,6 +547,53 @@ TEST_F(TaskIoTest, LoadsOriginalWorldImage) {
   EXPECT_GE(lo, 0.0);
   EXPECT_LE(hi, 16.0);
   EXPECT_GT(hi, lo);
+}
+
+}  // namespace
+}  // namespace vb::io
+
+namespace vb::io {
+namespace {
+
+// Format v2: obstacles.shapes. Version 1 means the original's boxes, version 2 without shapes
+// means the benchmark's family; a mesh is resolved relative to the task file.
+TEST_F(TaskIoTest, ObstacleShapesByVersion) {
+  EXPECT_EQ(LoadTask(WriteText("v1.yaml", kTinyTask)).rock_shape.kind,
+            terrain::ObstacleShapeKind::kBox);
+  EXPECT_EQ(LoadTask(WriteText("v1.yaml", kTinyTask)).tree_shape.kind,
+            terrain::ObstacleShapeKind::kBox);
+  const std::string v2 = Edit("version:", "version: 2");
+  const TaskSpec defaults = LoadTask(WriteText("v2.yaml", v2));
+  EXPECT_EQ(defaults.rock_shape.kind, terrain::ObstacleShapeKind::kBoulder);
+  EXPECT_EQ(defaults.tree_shape.kind, terrain::ObstacleShapeKind::kTrunk);
+  EXPECT_NE(defaults.rocks[0].shape_seed, 0u);
+  // shapes: in v1 it is an unknown key
+  const std::string shapes_line = "  shapes: {rock: box, tree: trunk}";
+  auto with_shapes = [&](const std::string& text, const std::string& line) {
+    return std::string(text).replace(text.find("obstacles:\n") + 11, 0, line + "\n");
+  };
+  const TaskSpec mixed = LoadTask(WriteText("mixed.yaml", with_shapes(v2, shapes_line)));
+  EXPECT_EQ(mixed.rock_shape.kind, terrain::ObstacleShapeKind::kBox);
+  EXPECT_EQ(mixed.tree_shape.kind, terrain::ObstacleShapeKind::kTrunk);
+  ExpectError(with_shapes(kTinyTask, shapes_line), 20, "obstacles.shapes", "unknown key");
+  ExpectError(with_shapes(v2, "  shapes: {rock: trunk}"), 20, "obstacles.shapes.rock",
+              "unknown shape 'trunk'; valid: box, boulder or {mesh: FILE}");
+  ExpectError(with_shapes(v2, "  shapes: {tree: pine}"), 20, "obstacles.shapes.tree",
+              "unknown shape 'pine'");
+  // a mesh, relative to the task file; saved and loaded back
+  fs::copy_file(std::string(VB_SOURCE_DIR) + "/data/meshes/rock_small.obj", Path("rock.obj"));
+  const TaskSpec mesh =
+      LoadTask(WriteText("mesh.yaml", with_shapes(v2, "  shapes: {rock: {mesh: rock.obj}}")));
+  EXPECT_EQ(mesh.rock_shape.kind, terrain::ObstacleShapeKind::kMesh);
+  EXPECT_EQ(mesh.rock_shape.mesh_file, "rock.obj");
+  EXPECT_EQ(mesh.rock_shape.mesh_vertices_m.size(), 12u);
+  SaveTask(mesh, Path("saved.yaml"));
+  const TaskSpec again = LoadTask(Path("saved.yaml"));
+  EXPECT_EQ(again.rock_shape.mesh_vertices_m, mesh.rock_shape.mesh_vertices_m);
+  EXPECT_NE(ReadAll(Path("saved.yaml")).find("shapes: {rock: {mesh: rock.obj}, tree: trunk}"),
+            std::string::npos);
+  ExpectError(with_shapes(v2, "  shapes: {rock: {mesh: nothing.obj}}"), 20,
+              "obstacles.shapes.rock.mesh", "nothing.obj': does not exist");
 }
 
 }  // namespace

@@ -3,7 +3,9 @@
 // scripts/make_regression_digests.sh to regenerate test/data/regression/pid_hmmwv_digests.csv
 // after an intended change of results; the tests compare against that file.
 //
-// usage: vb_make_regression_digests TASK_DIR [--shard I/N]
+// usage: vb_make_regression_digests TASK_DIR [--shard I/N] [--contacts]
+//   --contacts appends the trial's obstacle contact events as a sixth column (for the benchmark
+//   tables in docs/validation.md; the committed file has five columns)
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -21,15 +23,20 @@
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    std::fprintf(stderr, "usage: %s TASK_DIR [--shard I/N]\n", argv[0]);
+    std::fprintf(stderr, "usage: %s TASK_DIR [--shard I/N] [--contacts]\n", argv[0]);
     return 2;
   }
   int shard = 0, shards = 1;
+  bool contacts = false;
+  if (argc >= 3 && std::string(argv[argc - 1]) == "--contacts") {
+    contacts = true;
+    --argc;
+  }
   if (argc == 4 && std::string(argv[2]) == "--shard" &&
       std::sscanf(argv[3], "%d/%d", &shard, &shards) == 2 && shards > 0 && shard >= 0 &&
       shard < shards) {
   } else if (argc != 2) {
-    std::fprintf(stderr, "usage: %s TASK_DIR [--shard I/N]\n", argv[0]);
+    std::fprintf(stderr, "usage: %s TASK_DIR [--shard I/N] [--contacts]\n", argv[0]);
     return 2;
   }
   std::vector<std::string> files;
@@ -50,9 +57,11 @@ int main(int argc, char** argv) {
       spec.pair_index = k;
       const vb::runner::TrialResult r =
           vb::runner::RunTrial(task, hmmwv, spec, rules, soil ? &*soil : nullptr);
-      std::printf("%s,%d,%s,%s,%s\n", task.name.c_str(), k,
+      std::printf("%s,%d,%s,%s,%s", task.name.c_str(), k,
                   std::string(vb::runner::TrialStatusName(r.status)).c_str(),
                   vb::FormatExact(r.sim_time_s).c_str(), vb::runner::TrialDigest(r).c_str());
+      if (contacts) std::printf(",%d", r.obstacle_contacts);
+      std::printf("\n");
       std::fflush(stdout);
     }
   }

@@ -17,6 +17,7 @@
 #include "io/plot_png.h"
 #include "io/yaml_strict.h"
 #include "vb/engine/error.h"
+#include "vb/terrain/obstacle_shape.h"
 #include "vb/terrain/surface_class.h"
 
 namespace vb::io {
@@ -366,12 +367,20 @@ void WriteTopDownPng(const terrain::TaskSpec& task, int pair, const std::string&
     }
   }
   const double m_per_px = sx / map_px;
+  // the obstacles' outlines: the projections of their shapes (obstacle_shape.h)
+  auto fill_outline = [&](const std::vector<Vec3>& local, const Vec2& at, const cv::Scalar& c) {
+    std::vector<cv::Point> poly;
+    for (const Vec2& q : terrain::Outline(local)) poly.push_back(to_px(at.x() + q.x(), at.y() + q.y()));
+    cv::fillConvexPoly(map, poly, c, cv::LINE_AA);
+  };
   for (const terrain::RockSpec& rock : task.rocks) {
-    const double half = 2.2 * rock.scale;
-    cv::rectangle(map, to_px(rock.x_m - half, rock.y_m + half),
-                  to_px(rock.x_m + half, rock.y_m - half), cv::Scalar(40, 40, 40), cv::FILLED);
+    fill_outline(terrain::RockShapePoints(task, rock), Vec2(rock.x_m, rock.y_m),
+                 cv::Scalar(40, 40, 40));
   }
+  const std::vector<Vec3> tree_local = terrain::TreeShapePoints(task);
   for (const terrain::TreeSpec& tree : task.trees) {
+    fill_outline(tree_local, Vec2(tree.x_m, tree.y_m), cv::Scalar(0, 90, 0));
+    // at least a dot: a 1 m trunk is ~5 px at 128 m
     const int r = std::max(2, static_cast<int>(std::lround(0.5 / m_per_px)));
     cv::circle(map, to_px(tree.x_m, tree.y_m), r, cv::Scalar(0, 90, 0), cv::FILLED);
   }

@@ -13,8 +13,10 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include "io/mesh_loader.h"
 #include "io/yaml_strict.h"
 #include "vb/engine/error.h"
+#include "vb/terrain/obstacle_shape.h"
 
 namespace vb::io {
 namespace {
@@ -268,8 +270,50 @@ void ReadSemantics(const StrictNode& node, TaskSpec& task) {
   }
 }
 
-void ReadObstacles(const StrictNode& node, TaskSpec& task) {
-  const StrictMap obstacles = node.AsMap({"rocks", "trees"});
+// One entry of obstacles.shapes: a kind name, or {mesh: path} (relative to the task file).
+terrain::ObstacleShapeSpec ReadShape(const StrictNode& node, const TaskSpec& task, bool rock) {
+  terrain::ObstacleShapeSpec shape;
+  if (node.IsMap()) {
+    const StrictMap map = node.AsMap({"mesh"});
+    const StrictNode file = map.Required("mesh");
+    shape.kind = terrain::ObstacleShapeKind::kMesh;
+    shape.mesh_file = file.AsString();
+    if (shape.mesh_file.empty()) file.Fail("empty mesh path");
+    if (shape.mesh_file.find('\0') != std::string::npos) file.Fail("mesh path contains NUL");
+    namespace fs = std::filesystem;
+    const std::string resolved =
+        (fs::path(task.source_file).parent_path() / shape.mesh_file).string();
+    shape.mesh_vertices_m = LoadMeshVertices(resolved, file.file(), file.line(), file.key());
+    return shape;
+  }
+  const std::string name = node.AsString();
+  const char* valid = rock ? "box, boulder or {mesh: FILE}" : "box, trunk or {mesh: FILE}";
+  if (!terrain::ParseObstacleShapeKind(name, &shape.kind) ||
+      shape.kind == terrain::ObstacleShapeKind::kMesh ||
+      shape.kind == (rock ? terrain::ObstacleShapeKind::kTrunk
+                          : terrain::ObstacleShapeKind::kBoulder)) {
+    node.Fail("unknown shape '" + name + "'; valid: " + valid);
+  }
+  return shape;
+}
+
+void ReadObstacles(const StrictNode& node, TaskSpec& task, int version) {
+  // Version 1 has no shapes and means the original's boxes; version 2 defaults to the
+  // benchmark's family (boulders and trunks).
+  const StrictMap obstacles = version == 1 ? node.AsMap({"rocks", "trees"})
+                                           : node.AsMap({"shapes", "rocks", "trees"});
+  if (version == 1) {
+    task.rock_shape.kind = terrain::ObstacleShapeKind::kBox;
+    task.tree_shape.kind = terrain::ObstacleShapeKind::kBox;
+  } else {
+    task.rock_shape.kind = terrain::ObstacleShapeKind::kBoulder;
+    task.tree_shape.kind = terrain::ObstacleShapeKind::kTrunk;
+    if (obstacles.Has("shapes")) {
+      const StrictMap shapes = obstacles.Required("shapes").AsMap({"rock", "tree"});
+      if (shapes.Has("rock")) task.rock_shape = ReadShape(shapes.Required("rock"), task, true);
+      if (shapes.Has("tree")) task.tree_shape = ReadShape(shapes.Required("tree"), task, false);
+    }
+  }
   // Each obstacle becomes a convex body with its own broadphase entry: a million trees is not a
   // world but a setup that runs for hours.
   const std::vector<StrictNode> rocks = obstacles.Required("rocks").AsList();
@@ -364,9 +408,10 @@ terrain::TaskSpec LoadTaskFromRoot(const StrictNode& root, const std::string& pa
                 "'");
   }
   const StrictNode version = top.Required("version");
-  if (version.AsInt() != TaskSpec::kFormatVersion) {
+  if (version.AsInt() != 1 && version.AsInt() != TaskSpec::kFormatVersion) {
     version.Fail("unsupported task format version " + std::to_string(version.AsInt()) +
-                 " (this build reads version " + std::to_string(TaskSpec::kFormatVersion) + ")");
+                 " (this build reads versions 1 and " +
+                 std::to_string(TaskSpec::kFormatVersion) + ")");
   }
 
   TaskSpec task;
@@ -381,7 +426,8 @@ terrain::TaskSpec LoadTaskFromRoot(const StrictNode& root, const std::string& pa
   const std::optional<StrictNode> classes_label = ReadLabels(top.Required("labels"), task);
   ReadSemantics(top.Required("semantics"), task);
   CheckClassesLabel(classes_label, task);
-  ReadObstacles(top.Required("obstacles"), task);
+  ReadObstacles(top.Required("obstacles"), task, static_cast<int>(version.AsInt()));
+  terrain::AssignShapeSeeds(&task);
   ReadPairs(top.Required("pairs"), task);
   // The image last: a task with a bad key fails fast without decoding a large image.
   task.heights = ReadHeights(image, task);
@@ -447,6 +493,16 @@ void SaveTask(const terrain::TaskSpec& task, const std::string& path) {
   }
 
   out += "obstacles:\n";
+  {
+    auto shape_text = [](const terrain::ObstacleShapeSpec& shape) {
+      if (shape.kind == terrain::ObstacleShapeKind::kMesh) {
+        return "{mesh: " + YamlString(shape.mesh_file) + "}";
+      }
+      return std::string(terrain::ObstacleShapeKindName(shape.kind));
+    };
+    out += "  shapes: {rock: " + shape_text(task.rock_shape) +
+           ", tree: " + shape_text(task.tree_shape) + "}\n";
+  }
   out += task.rocks.empty() ? "  rocks: []\n" : "  rocks:\n";
   for (const terrain::RockSpec& rock : task.rocks) {
     out += "    - {x: " + FormatDouble(rock.x_m) + ", y: " + FormatDouble(rock.y_m) +

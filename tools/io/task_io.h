@@ -14,7 +14,7 @@ terrain::TaskSpec LoadTask(const std::string& path);
 // (relative to its directory). The one strict place every task goes through.
 terrain::TaskSpec LoadTaskText(const std::string& text, const std::string& path);
 
-// Writes a task file (format version 1). The height image is written next to it by
+// Writes a task file (format version 2, with the obstacle shapes). The height image is written next to it by
 // WriteHeightImage; task.height_image must already hold its path relative to the task file.
 // The text is loaded back with LoadTaskText before anything is written: a task the loader would
 // refuse (a scale out of bounds, a rock outside the world) is an InputError, never a file.

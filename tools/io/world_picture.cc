@@ -13,6 +13,7 @@
 #include "io/yaml_strict.h"
 #include "vb/engine/error.h"
 #include "vb/terrain/grid_planner.h"
+#include "vb/terrain/obstacle_shape.h"
 
 namespace vb::io {
 namespace {
@@ -78,6 +79,10 @@ void WriteWorldPicture(const terrain::TaskSpec& task, const std::string& path) {
   const auto [lo, hi] = std::minmax_element(g.heights_m.begin(), g.heights_m.end());
   const double span = std::max(*hi - *lo, 1e-9);
   const terrain::OccupancyGrid obstacles = terrain::RasterizeObstacles(task);
+  // boxes as their occupied cells (the original's footprint squares); other shapes as their
+  // outlines, the projections the occupancy grid is rasterised from (obstacle_shape.h)
+  const bool boxes = task.rock_shape.kind == terrain::ObstacleShapeKind::kBox &&
+                     task.tree_shape.kind == terrain::ObstacleShapeKind::kBox;
 
   for (int r = 0; r < g.rows; ++r) {
     for (int c = 0; c < g.cols; ++c) {
@@ -90,13 +95,31 @@ void WriteWorldPicture(const terrain::TaskSpec& task, const std::string& path) {
         left[k] = static_cast<uint8_t>(left[k] * shade);
         right[k] = static_cast<uint8_t>(right[k] * (0.6 + 0.4 * shade));
       }
-      if (obstacles.Occupied(r, c)) left = right = cv::Vec3b(20, 20, 20);
+      if (boxes && obstacles.Occupied(r, c)) left = right = cv::Vec3b(20, 20, 20);
       cv::rectangle(img, cv::Rect(c * kPixelsPerCell, r * kPixelsPerCell, kPixelsPerCell,
                                   kPixelsPerCell),
                     cv::Scalar(left), cv::FILLED);
       cv::rectangle(img, cv::Rect(w + gap + c * kPixelsPerCell, r * kPixelsPerCell,
                                   kPixelsPerCell, kPixelsPerCell),
                     cv::Scalar(right), cv::FILLED);
+    }
+  }
+  if (!boxes) {
+    auto fill = [&](const std::vector<Vec3>& local, const Vec2& at, const cv::Scalar& colour) {
+      for (int offset : {0, w + gap}) {
+        std::vector<cv::Point> poly;
+        for (const Vec2& q : terrain::Outline(local)) {
+          poly.push_back(ToPixel(task, at + q, offset));
+        }
+        cv::fillConvexPoly(img, poly, colour, cv::LINE_AA);
+      }
+    };
+    for (const terrain::RockSpec& rock : task.rocks) {
+      fill(terrain::RockShapePoints(task, rock), Vec2(rock.x_m, rock.y_m), cv::Scalar(20, 20, 20));
+    }
+    const std::vector<Vec3> tree_local = terrain::TreeShapePoints(task);
+    for (const terrain::TreeSpec& tree : task.trees) {
+      fill(tree_local, Vec2(tree.x_m, tree.y_m), cv::Scalar(30, 60, 100));
     }
   }
   // paths (pairs k and k+5 share a line, so only the first five are drawn) with start/goal dots

@@ -31,6 +31,7 @@ class StrictNode {
   // Throws InputError(file, line, key, message).
   [[noreturn]] void Fail(const std::string& message) const;
 
+  bool IsMap() const { return node_.IsMap(); }
   // A map whose keys must all be in `allowed`; see StrictMap.
   StrictMap AsMap(std::initializer_list<const char*> allowed) const;
   // A sequence; items are keyed "key[i]". Fails unless min_size <= size <= max_size.

@@ -74,8 +74,9 @@ std::string TaskSceneJson(const terrain::TaskSpec& task, double goal_radius_m) {
   }
   j += "]}";
 
-  // Obstacle boxes exactly where the physics puts them (resting on the lowest ground point under
-  // their footprint), so the picture shows what the vehicle hit.
+  // Obstacles exactly where the physics puts them (resting on the ground under their outline),
+  // as their convex hulls (vertices and counter-clockwise face polygons), so the picture shows
+  // what the vehicle hit; min_m/max_m are their bounding boxes.
   const terrain::Terrain terrain(task);
   const terrain::ObstacleField field(task, terrain);
   j += ", \"obstacles\": [";
@@ -85,7 +86,25 @@ std::string TaskSceneJson(const terrain::TaskSpec& task, double goal_radius_m) {
     first = false;
     const bool tree = o.tag >= terrain::kTreeTagOffset;
     j += std::string("{\"kind\": \"") + (tree ? "tree" : "rock") + "\", \"min_m\": " +
-         Xyz(o.shape.aabb_min) + ", \"max_m\": " + Xyz(o.shape.aabb_max) + "}";
+         Xyz(o.shape.aabb_min) + ", \"max_m\": " + Xyz(o.shape.aabb_max) + ", \"vertices_m\": [";
+    for (size_t i = 0; i < o.shape.vertices.size(); ++i) {
+      if (i > 0) j += ",";
+      j += Xyz(o.shape.vertices[i]);
+    }
+    j += "], \"faces\": [";
+    bool first_face = true;
+    for (const std::vector<int>& polygon : engine::FacePolygons(o.shape)) {
+      if (polygon.size() < 3) continue;
+      if (!first_face) j += ",";
+      first_face = false;
+      j += "[";
+      for (size_t i = 0; i < polygon.size(); ++i) {
+        if (i > 0) j += ",";
+        j += std::to_string(polygon[i]);
+      }
+      j += "]";
+    }
+    j += "]}";
   }
   j += "]";
 

@@ -44,6 +44,9 @@ bool TryMakeConvexHull(const std::vector<Vec3>& points, double sample_spacing_m,
 // The same, throwing InputError naming `what` if the hull is degenerate.
 ConvexShape MakeConvexHull(const std::vector<Vec3>& points, double sample_spacing_m,
                            const std::string& what);
+// The vertices of each face (indices into shape.vertices), counter-clockwise seen from outside,
+// in face order: what a picture of the shape draws.
+std::vector<std::vector<int>> FacePolygons(const ConvexShape& shape);
 // Adds the edge samples and the bounding box (after vertices, faces and edges are set).
 void FinishShape(double sample_spacing_m, ConvexShape* shape);
 

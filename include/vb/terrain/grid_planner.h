@@ -32,8 +32,10 @@ struct OccupancyGrid {
   Vec2 CenterOf(const Cell& cell) const;    // world x, y of a cell centre
 };
 
-// Obstacle footprints as the original (reference_verti_bench.md §4.4): a rock covers a square of
-// side int(4.4*scale*task.scale/cell) cells (odd-widened as [c - w/2, c + w/2]); a tree one cell.
+// Obstacle footprints. Boxes as the original (reference_verti_bench.md §4.4): a rock covers a
+// square of side int(4.4*scale*task.scale/cell) cells (odd-widened as [c - w/2, c + w/2]); a
+// tree one cell. Other shapes (obstacle_shape.h): the cells whose centres lie inside the shape's
+// outline (its projection on the ground), plus the cell nearest the obstacle's position.
 OccupancyGrid RasterizeObstacles(const TaskSpec& task);
 // Inflation radius of the global planners in cells: 4 m * task.scale (the original's int(4 * sf)
 // cells at 1 m cells; in a scaled world the cells shrink with it, so this stays 4 cells, where the

@@ -1,5 +1,6 @@
-// The task's rocks and trees as static convex shapes in world coordinates, resting on the ground
-// (terrain_physics.h: ObstacleBaseHeight), with a uniform-grid broadphase so that a body asks only
+// The task's rocks and trees as static convex shapes in world coordinates (boxes, or the convex
+// hulls of their shapes: obstacle_shape.h), resting on the ground (terrain_physics.h:
+// ObstacleBaseHeight), with a uniform-grid broadphase so that a body asks only
 // for the obstacles near it. Tags: rock i -> i, tree j -> kTreeTagOffset + j.
 #pragma once
 

@@ -31,18 +31,35 @@ struct PatchGrid {
   double FrictionAt(int r, int c) const { return friction[static_cast<size_t>(r) * cols + c]; }
 };
 
-// A rock: collision box (4.4, 4.4, 3.8) m * scale * task.scale, as the original, resting on the
-// terrain (bottom face at the lowest ground point under it, terrain_physics.h).
+// A rock: a shape of the task's rock kind (obstacle_shape.h) with the bounding box of the
+// original's collision box (4.4, 4.4, 3.8) m * scale * task.scale, resting on the terrain.
 constexpr double kRockSideAtScale1_m = 4.4;   // the rock box's side at both scales 1
 struct RockSpec {
   double x_m = 0.0;
   double y_m = 0.0;
   double scale = 1.0;
+  // Seed of this rock's boulder shape: derived, not stored in the file (AssignShapeSeeds in
+  // obstacle_shape.h: from the task's generator seed and the rock's index), kept by copies
+  // (scaled tasks, perceived subsets).
+  uint64_t shape_seed = 0;
 };
-// A tree: collision box (1, 1, 5) m * task.scale, standing on the terrain at (x, y).
+// A tree: a shape of the task's tree kind with the bounding box (1, 1, 5) m * task.scale,
+// standing on the terrain at (x, y).
 struct TreeSpec {
   double x_m = 0.0;
   double y_m = 0.0;
+};
+
+// The shape of one obstacle kind (task format v2 `obstacles.shapes`, docs/task_format.md).
+//   kBox:     the original's axis-aligned collision box (format v1 means this for both kinds)
+//   kBoulder: a seeded lumpy dome, convex, stretched to the rock's box (rocks only)
+//   kTrunk:   a 12-sided prism of the tree box's width and height (trees only)
+//   kMesh:    the convex hull of a mesh's vertices (metres at scale 1, loaded by tools/io)
+enum class ObstacleShapeKind { kBox, kBoulder, kTrunk, kMesh };
+struct ObstacleShapeSpec {
+  ObstacleShapeKind kind = ObstacleShapeKind::kBox;
+  std::string mesh_file;              // kMesh: the path as written in the task file
+  std::vector<Vec3> mesh_vertices_m;  // kMesh: the mesh's vertices, filled by the loader
 };
 
 struct StartGoalPair {
@@ -86,7 +103,7 @@ struct TaskLimits {
 std::string TaskNameProblem(const std::string& name);
 
 struct TaskSpec {
-  static constexpr int kFormatVersion = 1;
+  static constexpr int kFormatVersion = 2;   // written; versions 1 and 2 are read
 
   std::string name;          // e.g. "env042"
   std::string source_file;   // task file path as given (for messages and provenance)
@@ -104,6 +121,10 @@ struct TaskSpec {
   PatchGrid patches;
   std::vector<RockSpec> rocks;
   std::vector<TreeSpec> trees;
+  // Shapes per kind. A TaskSpec made in code has boxes (format v1's meaning); the generator and
+  // a v2 file without `shapes` have the benchmark's family, boulders and trunks.
+  ObstacleShapeSpec rock_shape;
+  ObstacleShapeSpec tree_shape;
   std::vector<StartGoalPair> pairs;
   TaskLabels labels;
 };

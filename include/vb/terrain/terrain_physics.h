@@ -2,6 +2,8 @@
 // obstacles themselves are terrain::ObstacleField; tags: rock i -> i, tree j -> 1000 + j).
 #pragma once
 
+#include <vector>
+
 #include "vb/terrain/task.h"
 #include "vb/terrain/terrain.h"
 
@@ -22,5 +24,10 @@ inline Vec3 TreeBoxSize(const TaskSpec& task) { return TreeBoxSize() * task.scal
 // under its footprint (a square of full side footprint_m centred at (x, y), axis-aligned as the
 // boxes are). The box then touches the ground at its lowest point and nowhere hangs above it.
 double ObstacleBaseHeight(const Terrain& terrain, double x_m, double y_m, double footprint_m);
+// The same over a convex footprint polygon (world x, y, counter-clockwise: the outline of a
+// boulder, trunk or mesh, obstacle_shape.h): the lowest terrain height at a grid vertex inside it
+// or on its boundary (sampled at 1/32 of the grid spacing). A shape whose lowest point is there
+// touches the ground at that point and nowhere hangs above it.
+double ObstacleBaseHeight(const Terrain& terrain, const std::vector<Vec2>& footprint_W);
 
 }  // namespace vb::terrain

@@ -99,4 +99,39 @@ ConvexShape MakeBox(const Vec3& center, const Vec3& half_m, double sample_spacin
   return s;
 }
 
+std::vector<std::vector<int>> FacePolygons(const ConvexShape& s) {
+  double extent = 0.0;
+  if (!s.vertices.empty()) extent = (s.aabb_max - s.aabb_min).norm();
+  const double tol = 1e-6 * std::max(extent, 1e-9);
+  std::vector<std::vector<int>> out;
+  for (const ConvexShape::Face& f : s.faces) {
+    std::vector<int> ids;
+    Vec3 centre = Vec3::Zero();
+    for (size_t i = 0; i < s.vertices.size(); ++i) {
+      if (std::abs(f.normal.dot(s.vertices[i]) - f.offset) <= tol) {
+        ids.push_back(static_cast<int>(i));
+        centre += s.vertices[i];
+      }
+    }
+    if (ids.size() < 3) {
+      out.push_back({});
+      continue;
+    }
+    centre /= static_cast<double>(ids.size());
+    // an in-plane basis; angles about the outward normal increase counter-clockwise
+    const Vec3 u = (s.vertices[static_cast<size_t>(ids[0])] - centre).normalized();
+    const Vec3 w = f.normal.cross(u);
+    std::vector<std::pair<double, int>> by_angle;
+    for (int id : ids) {
+      const Vec3 d = s.vertices[static_cast<size_t>(id)] - centre;
+      by_angle.push_back({std::atan2(d.dot(w), d.dot(u)), id});
+    }
+    std::sort(by_angle.begin(), by_angle.end());
+    std::vector<int> polygon;
+    for (const auto& [angle, id] : by_angle) polygon.push_back(id);
+    out.push_back(std::move(polygon));
+  }
+  return out;
+}
+
 }  // namespace vb::engine

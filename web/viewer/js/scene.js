@@ -78,25 +78,40 @@ export function buildTerrain(task) {
   return { mesh, heightField: hf, triangles: cells * 2 };
 }
 
+// One obstacle's convex hull (vertices_m and counter-clockwise face polygons from the scene),
+// fan-triangulated; an obstacle without them (an older scene) is its bounding box.
+function obstacleGeometry(o) {
+  if (!o.vertices_m || !o.faces) {
+    const g = new THREE.BoxGeometry(1, 1, 1);
+    const size = [0, 1, 2].map((a) => o.max_m[a] - o.min_m[a]);
+    const centre = [0, 1, 2].map((a) => (o.max_m[a] + o.min_m[a]) / 2);
+    g.scale(size[0], size[1], size[2]);
+    g.translate(centre[0], centre[1], centre[2]);
+    return g.toNonIndexed();
+  }
+  const pos = [];
+  for (const face of o.faces) {
+    for (let k = 1; k + 1 < face.length; ++k) {
+      for (const id of [face[0], face[k], face[k + 1]]) pos.push(...o.vertices_m[id]);
+    }
+  }
+  const g = new THREE.BufferGeometry();
+  g.setAttribute('position', new THREE.Float32BufferAttribute(pos, 3));
+  g.computeVertexNormals();   // flat shading: the triangles share no vertices
+  return g;
+}
+
 export function buildObstacles(task) {
   const group = new THREE.Group();
   group.name = 'obstacles';
-  const box = new THREE.BoxGeometry(1, 1, 1);
   for (const kind of ['rock', 'tree']) {
     const list = task.obstacles.filter((o) => o.kind === kind);
     if (list.length === 0) continue;
-    const material = new THREE.MeshLambertMaterial({ color: kind === 'rock' ? 0x6d6a66 : 0x2f7d32 });
-    const mesh = new THREE.InstancedMesh(box, material, list.length);
-    const m = new THREE.Matrix4();
-    list.forEach((o, i) => {
-      const size = [0, 1, 2].map((a) => o.max_m[a] - o.min_m[a]);
-      const centre = [0, 1, 2].map((a) => (o.max_m[a] + o.min_m[a]) / 2);
-      m.makeScale(size[0], size[1], size[2]);
-      m.setPosition(centre[0], centre[1], centre[2]);
-      mesh.setMatrixAt(i, m);
-    });
-    mesh.name = kind;
-    group.add(mesh);
+    const material = new THREE.MeshLambertMaterial({ color: kind === 'rock' ? 0x6d6a66 : 0x6b4f2e });
+    const kindGroup = new THREE.Group();
+    kindGroup.name = kind;
+    for (const o of list) kindGroup.add(new THREE.Mesh(obstacleGeometry(o), material));
+    group.add(kindGroup);
   }
   return group;
 }
