@@ -27,7 +27,8 @@ STAGES = [
     ("  Bullet step", r"btDiscreteDynamicsWorld::stepSimulation\("),
     ("    articulated-body dynamics", r"btMultiBodyDynamicsWorld::solveExternalForces\("),
     ("    solver setup (rows)", r"btMultiBodyConstraintSolver::solveGroupCacheFriendlySetup\("),
-    ("    solver sweeps", r"btSequentialImpulseConstraintSolver::solveGroupCacheFriendlyIterations\("),
+    ("    solver sweeps",
+     r"btSequentialImpulseConstraintSolver::solveGroupCacheFriendlyIterations\("),
     ("    integration", r"btMultiBodyDynamicsWorld::integrateTransforms\("),
     ("  state read-out", r"vb::vehicles::Vehicle::UpdateState\(\)"),
 ]
@@ -87,7 +88,8 @@ def main():
     for label, _ in STAGES:
         if label in counts:
             n = counts[label] / steps
-            print(f"  {label:<32} {n / 1000:8.1f} k instructions/step  {100 * counts[label] / total:5.1f} %")
+            share = 100 * counts[label] / total
+            print(f"  {label:<32} {n / 1000:8.1f} k instructions/step  {share:5.1f} %")
 
 
 if __name__ == "__main__":
