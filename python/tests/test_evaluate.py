@@ -40,6 +40,12 @@ def test_external_policy_appears_in_table1_beside_pid(tmp_path, vb_gym_bin):
         table = list(csv.DictReader(f))
     systems = {row.get("system") for row in table}
     assert {"pid/hmmwv", "follower/hmmwv"} <= systems, table
+    # The index alone, rebuilt from the records: their tasks are found by the task set path
+    # they record (tasks/env000.yaml, beside the results' parents) or given as TASK arguments.
+    only = subprocess.run([sys.executable, "-m", "vb_gym.evaluate", "--index-only", "--out",
+                           str(out), RIGID_TASK], capture_output=True, text=True, timeout=600)
+    assert only.returncode == 0, only.stderr
+    assert "index of 4 trials" in only.stdout
     # Killed or not, a re-run only runs what has no record.
     (out / "trials" / "env000_p1_s0_hmmwv_follower.json").unlink()
     again = evaluate(out)

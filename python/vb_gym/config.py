@@ -166,13 +166,30 @@ class EnvConfig:
         }
 
 
+def _installed_share() -> Path | None:
+    """share/vb of the vb install whose vb_gym this package runs (bin/../share/vb), if any."""
+    try:
+        share = Path(find_server_binary()).resolve().parent.parent / "share" / "vb"
+    except FileNotFoundError:
+        return None
+    return share if share.is_dir() else None
+
+
 def _resolve_path(item: str) -> Path:
+    """A task path as given: against the cwd, then a source checkout holding this package, then
+    the share/vb of the vb_gym in use (so "tasks/env042.yaml" works with an installed vb)."""
     p = Path(item).expanduser()
     if p.exists():
         return p.resolve()
-    if not p.is_absolute() and (REPO_ROOT / p).exists():
-        return (REPO_ROOT / p).resolve()
-    raise ConfigError(f"tasks: {item!r} does not exist (nor relative to {REPO_ROOT})")
+    bases = [REPO_ROOT] if (REPO_ROOT / "tasks").is_dir() else []
+    share = _installed_share()
+    if share is not None:
+        bases.append(share)
+    for base in bases:
+        if not p.is_absolute() and (base / p).exists():
+            return (base / p).resolve()
+    where = ", ".join(str(b) for b in bases) or "no vb checkout or install found"
+    raise ConfigError(f"tasks: {item!r} does not exist (nor relative to {where})")
 
 
 def resolve_tasks(tasks: Any) -> list[str]:

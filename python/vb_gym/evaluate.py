@@ -115,6 +115,29 @@ def run_trials(config: EnvConfig, policy_spec: str, trials: list[tuple[int, int,
         env.close()
 
 
+def recorded_tasks(files: list[str], trial_dir: Path) -> list[str]:
+    """The task files the records name. A record names its task by its task set path (e.g.
+    "tasks/env042.yaml"; older records: an absolute path), looked for beside the results and in
+    their parent directories, never in the current directory (vb's rule, io/task_ref.h)."""
+    found = set()
+    for f in files:
+        name = json.loads(Path(f).read_text())["provenance"]["task_file"]
+        rec = Path(name)
+        if rec.is_absolute() and rec.is_file():
+            found.add(str(rec))
+            continue
+        if rec.is_absolute():
+            rec = Path(rec.parent.name) / rec.name
+        for d in [trial_dir.resolve(), *trial_dir.resolve().parents]:
+            if (d / rec).is_file():
+                found.add(str(d / rec))
+                break
+        else:
+            raise SystemExit(f"vb_gym.evaluate: error: the task {name!r} of {f} is not beside "
+                             "the results; give the task set as TASK arguments")
+    return sorted(found)
+
+
 def write_index(config: EnvConfig, out_dir: Path) -> int:
     with VbEnv(config) as env:
         return env._core.request({"op": "write_index", "dir": str(out_dir)})["trials"]
@@ -148,9 +171,9 @@ def main(argv: list[str] | None = None) -> int:
     trial_dir = out_dir / "trials"
     if args.index_only:
         files = sorted(str(p) for p in trial_dir.glob("*.json"))
-        tasks = sorted({json.loads(Path(f).read_text())["task_file"] for f in files}) or None
-        if tasks is None:
+        if not files:
             raise SystemExit(f"vb_gym.evaluate: error: no records in {trial_dir}")
+        tasks = resolve_tasks(args.tasks) if args.tasks else recorded_tasks(files, trial_dir)
         n = write_index(EnvConfig(tasks=tasks, crops=()), out_dir)
         print(f"index of {n} trials: {out_dir / 'index.csv'}")
         return 0

@@ -24,10 +24,10 @@ double Interpolate(const std::vector<EngineMapPoint>& map, double w, bool full) 
 }
 
 // Clutch of a "locked" differential between two shafts: a stiff viscous coupling saturated at the
-// clutch torque limit (Chrono's ChShaftsClutch with a 100 N·m limit behaves the same way).
-double ClutchTorque(double speed_difference_radps, double limit_nm) {
-  constexpr double kCouplingNmsPerRad = 400.0;
-  return std::clamp(kCouplingNmsPerRad * speed_difference_radps, -limit_nm, limit_nm);
+// clutch torque limit (Chrono's ChShaftsClutch with a 100 N·m limit behaves the same way). The
+// coupling (N m s/rad) is the driveline's lock_coupling_nms_per_rad.
+double ClutchTorque(double coupling, double speed_difference_radps, double limit_nm) {
+  return std::clamp(coupling * speed_difference_radps, -limit_nm, limit_nm);
 }
 
 }  // namespace
@@ -97,7 +97,8 @@ void ComputeWheelTorques(const VehicleParams& p, double throttle,
     for (size_t a = 0; 2 * a + 1 < n; ++a) {
       const size_t l = 2 * a, r = 2 * a + 1;
       if (!driven[l] || !driven[r]) continue;
-      const double t = ClutchTorque(wheel_speeds_radps[l] - wheel_speeds_radps[r], limit);
+      const double t = ClutchTorque(p.driveline.lock_coupling_nms_per_rad,
+                                    wheel_speeds_radps[l] - wheel_speeds_radps[r], limit);
       (*torques)[l] -= t;
       (*torques)[r] += t;
     }
@@ -121,7 +122,8 @@ void ComputeWheelTorques(const VehicleParams& p, double throttle,
       // The central clutch sits between the front and rear driveshafts, before the conical gears:
       // shaft speed = wheel speed / conical ratio, wheel-side torque = shaft torque / ratio.
       const double k = p.driveline.conical_ratio;
-      const double t = ClutchTorque((front / nf - rear / nr) / k, limit) / k;
+      const double t = ClutchTorque(p.driveline.lock_coupling_nms_per_rad,
+                                    (front / nf - rear / nr) / k, limit) / k;
       for (size_t i = 0; i < n; ++i) {
         if (!driven[i]) continue;
         (*torques)[i] += (i < half ? -t / nf : t / nr);

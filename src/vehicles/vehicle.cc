@@ -11,6 +11,8 @@
 #include "vb/engine/error.h"
 #include "vb/terrain/body_contact.h"
 #include "vb/vehicles/powertrain.h"
+#include "vb/vehicles/steering_linkage.h"
+#include "vb/vehicles/suspension_forces.h"
 #include "vb/vehicles/suspension_kinematics.h"
 #include "vb/vehicles/tire_contact.h"
 #include "vb/vehicles/tmeasy_tire.h"
@@ -24,6 +26,7 @@ struct Vehicle::Internals {
     int wheel_link = -1;
     double side = 1.0;      // +1 left, -1 right
     const AxleParams* axle = nullptr;
+    const WheelParams* wheel = nullptr;  // the axle's own or the vehicle's
     BristleState bristle;
     TmeasyState tmeasy;
     Table1D shock_length;   // kDoubleWishbone: shock length vs wheel travel (m)
@@ -33,6 +36,8 @@ struct Vehicle::Internals {
   double corner_sprung_mass_kg = 0.0;   // chassis mass per wheel
   Vec3 com_B = Vec3::Zero();
   double steer_wheelbase_m = 0.0;  // steered axle to the turning-centre line (unsteered axles)
+  bool linkage_steering = false;   // angles from steering_linkage.h (not the tie-rod solver)
+  TurnGeometry turn;               // for linkage_steering
   Table1D left_steer_angle;        // kRackPinion: left road-wheel angle vs rack travel
   double rack_sign = 1.0;          // rack direction that turns the wheels left
   double rack_max_m = 0.0;
@@ -83,6 +88,14 @@ double StopForce(const SuspensionParams& su, double deflection_m) {
 
 // Hard end of travel (Bullet joint limit) beyond the stop table, as a last resort only.
 constexpr double kHardLimitBeyondStops_m = 0.03;
+// A rigid suspension's carrier is held at s = 0 by an implicit position servo of at most this
+// many chassis weights (it carries a share of one, plus the impacts).
+constexpr double kRigidHoldWeights = 20.0;
+
+// The wheel of an axle: its own if it gives one, else the vehicle's.
+const WheelParams& WheelOf(const VehicleParams& p, const AxleParams& a) {
+  return a.wheel.radius_m > 0.0 ? a.wheel : p.wheel;
+}
 
 // Body-body contact (terrain/body_contact.h). The envelope's surface friction (painted steel on
 // rock or ground), combined with the other surface's by the minimum.
@@ -166,6 +179,14 @@ Vehicle::Vehicle(const VehicleParams& params, const terrain::Terrain& terrain, c
       params_.axles.begin(), params_.axles.end(), [](const AxleParams& a) { return a.driven; }));
   const double driveline_inertia_per_wheel =
       DrivelineInertiaPerDrivenWheel(params_.driveline, driven_axles);
+  // A motor's rotor turns 1 / (first gear x conical ratio) times faster than the wheels.
+  double rotor_inertia_per_wheel = 0.0;
+  if (params_.engine.rotor_inertia_kgm2 > 0.0 && driven_axles > 0) {
+    const double ratio =
+        params_.transmission.forward_ratios.front() * params_.driveline.conical_ratio;
+    rotor_inertia_per_wheel =
+        params_.engine.rotor_inertia_kgm2 / (ratio * ratio) / (2.0 * driven_axles);
+  }
   std::vector<engine::MultiBodyLinkSpec> links;
   double steered_x_sum = 0.0, fixed_x_sum = 0.0;
   int n_steered = 0, n_fixed = 0;
@@ -181,6 +202,7 @@ Vehicle::Vehicle(const VehicleParams& params, const terrain::Terrain& terrain, c
       Internals::Corner corner;
       corner.side = side;
       corner.axle = &axle;
+      corner.wheel = &WheelOf(params_, axle);
       const Vec3 center_B(axle.x_m, side * axle.half_track_m, axle.z_m);
       const SuspensionParams& su = axle.suspension;
 
@@ -191,10 +213,15 @@ Vehicle::Vehicle(const VehicleParams& params, const terrain::Terrain& terrain, c
       carrier.parent_com_to_joint_P = center_B - ch.com_B;
       carrier.mass_kg = axle.steered ? su.carrier_mass_kg / 2.0 : su.carrier_mass_kg;
       carrier.inertia_kgm2 = su.carrier_inertia_kgm2;
-      carrier.limit_lower = -su.rebound_travel_m - su.stop_deflection_m.back() -
-                            kHardLimitBeyondStops_m;
-      carrier.limit_upper = su.bump_travel_m + su.stop_deflection_m.back() +
-                            kHardLimitBeyondStops_m;
+      if (su.model == SuspensionModel::kRigid) {
+        carrier.limit_lower = -kHardLimitBeyondStops_m;
+        carrier.limit_upper = kHardLimitBeyondStops_m;
+      } else {
+        carrier.limit_lower = -su.rebound_travel_m - su.stop_deflection_m.back() -
+                              kHardLimitBeyondStops_m;
+        carrier.limit_upper = su.bump_travel_m + su.stop_deflection_m.back() +
+                              kHardLimitBeyondStops_m;
+      }
       if (su.model == SuspensionModel::kDoubleWishbone) {
         // sampled every ~5 mm over the whole possible travel
         const int samples =
@@ -222,9 +249,11 @@ Vehicle::Vehicle(const VehicleParams& params, const terrain::Terrain& terrain, c
       wheel.parent = parent;
       wheel.joint = engine::JointType::kRevolute;
       wheel.axis_P = Vec3::UnitY();
-      wheel.mass_kg = params_.wheel.mass_kg;
-      wheel.inertia_kgm2 = params_.wheel.inertia_kgm2;
+      wheel.mass_kg = corner.wheel->mass_kg;
+      wheel.inertia_kgm2 = corner.wheel->inertia_kgm2;
       if (axle.driven) wheel.inertia_kgm2.y() += driveline_inertia_per_wheel;
+      if (axle.driven && rotor_inertia_per_wheel > 0.0)
+        wheel.inertia_kgm2.y() += rotor_inertia_per_wheel;
       corner.wheel_link = static_cast<int>(links.size());
       links.push_back(wheel);
       in_->corners.push_back(corner);
@@ -232,7 +261,16 @@ Vehicle::Vehicle(const VehicleParams& params, const terrain::Terrain& terrain, c
   }
   if (n_steered > 0 && n_fixed > 0)
     in_->steer_wheelbase_m = std::abs(steered_x_sum / n_steered - fixed_x_sum / n_fixed);
-  if (params_.steering.model == SteeringModel::kRackPinion) {
+  for (const AxleParams& axle : params_.axles) {
+    if (!axle.steered) continue;
+    in_->linkage_steering = params_.steering.model != SteeringModel::kAckermann &&
+                            (params_.steering.model != SteeringModel::kRackPinion ||
+                             axle.suspension.model != SuspensionModel::kDoubleWishbone);
+    in_->turn.first_steered_x_m = axle.x_m;
+    in_->turn.centre_x_m = n_fixed > 0 ? fixed_x_sum / n_fixed : axle.x_m;
+    break;
+  }
+  if (params_.steering.model == SteeringModel::kRackPinion && !in_->linkage_steering) {
     // All steered axles share the rack; the first steered axle's tie-rod geometry is used.
     for (const AxleParams& axle : params_.axles) {
       if (!axle.steered) continue;
@@ -269,7 +307,9 @@ void Vehicle::Synchronize(double dt) {
 
   // steering: road-wheel angles, then implicit position servos on the knuckles
   double left = 0.0, right = 0.0;
-  if (params_.steering.model == SteeringModel::kRackPinion) {
+  if (in_->linkage_steering) {
+    // per steered axle, below
+  } else if (params_.steering.model == SteeringModel::kRackPinion) {
     // rack travel from the pinion; the right wheel mirrors the left one (y -> -y)
     const double rack = in_->rack_sign * inputs_.steering * in_->rack_max_m;
     left = in_->left_steer_angle(rack);
@@ -294,20 +334,35 @@ void Vehicle::Synchronize(double dt) {
     const AxleParams& axle = *c.axle;
     const SuspensionParams& su = axle.suspension;
 
-    if (c.knuckle_link >= 0)
+    if (c.knuckle_link >= 0) {
+      if (in_->linkage_steering) {
+        LinkageSteerAngles(params_.steering, in_->turn, inputs_.steering, axle.x_m,
+                           2.0 * axle.half_track_m, su.steering_arm_m, &left, &right);
+      }
       world_->SetJointPositionMotor(body_, c.knuckle_link, c.side > 0 ? left : right, 1e5);
+    }
 
     // suspension: spring-damper on the slider (strut) or along the shock (double wishbone), the
     // damper implicit on the reduced mass of the wheel carrier against its share of the chassis
-    const double unsprung_kg = su.carrier_mass_kg + params_.wheel.mass_kg;
+    const WheelParams& wp = *c.wheel;
+    const double unsprung_kg = su.carrier_mass_kg + wp.mass_kg;
     const double strut_mass_kg =
         unsprung_kg * in_->corner_sprung_mass_kg / (unsprung_kg + in_->corner_sprung_mass_kg);
     const double s = world_->JointPosition(body_, c.carrier_link);
     const double s_dot = world_->JointVelocity(body_, c.carrier_link);
     double force_up = 0.0;  // generalised force on the slider, + = compression direction
-    if (su.model == SuspensionModel::kStrut) {
+    if (su.model == SuspensionModel::kRigid) {
+      world_->SetJointPositionMotor(body_, c.carrier_link, 0.0,
+                                    kRigidHoldWeights * params_.chassis.mass_kg * kGravity);
+    } else if (su.model == SuspensionModel::kStrut) {
       const double c_strut = ImplicitDamping(su.damping_nspm, dt, strut_mass_kg);
       force_up = -(su.preload_n + su.stiffness_npm * s + c_strut * s_dot);
+    } else if (su.model != SuspensionModel::kDoubleWishbone) {
+      // shock along a constant motion ratio: spring, then the damper implicit at the wheel
+      const double mr = su.motion_ratio;
+      const double c_wheel = DamperSecant(su, -mr * s_dot) * mr * mr;
+      force_up = -mr * SpringForce(su, ShockLength(su, s)) -
+                 ImplicitDamping(c_wheel, dt, strut_mass_kg) * s_dot;
     } else {
       const double length = c.shock_length(s);
       const double dl_ds = c.shock_length.Slope(s);  // -motion ratio
@@ -315,10 +370,17 @@ void Vehicle::Synchronize(double dt) {
       const double c_wheel = ImplicitDamping(su.damping_nspm * dl_ds * dl_ds, dt, strut_mass_kg);
       force_up = spring * dl_ds - c_wheel * s_dot;
     }
-    // bump and rebound stops: progressive springs beyond the stop travel
-    force_up -= StopForce(su, s - su.bump_travel_m);
-    force_up += StopForce(su, -su.rebound_travel_m - s);
-    world_->AddJointForce(body_, c.carrier_link, force_up);
+    if (su.model != SuspensionModel::kRigid) {
+      // bump and rebound stops: progressive springs beyond the stop travel
+      force_up -= StopForce(su, s - su.bump_travel_m);
+      force_up += StopForce(su, -su.rebound_travel_m - s);
+      // anti-roll bar: against the travel difference of the axle's two wheels
+      if (su.anti_roll_bar_npm > 0.0) {
+        const double s_other = world_->JointPosition(body_, in_->corners[i ^ 1].carrier_link);
+        force_up -= su.anti_roll_bar_npm * (s - s_other);
+      }
+      world_->AddJointForce(body_, c.carrier_link, force_up);
+    }
 
     // drive torque on the wheel joint; brakes as an implicit velocity motor (no creep when held)
     world_->AddJointForce(body_, c.wheel_link, in_->wheel_torques[i]);
@@ -335,10 +397,10 @@ void Vehicle::Synchronize(double dt) {
       in.axis_W = axis_W;
       in.velocity_W = world_->LinkPointVelocity(body_, c.wheel_link, wheel.position);
       in.angular_velocity_W = world_->LinkAngularVelocity(body_, c.wheel_link);
-      in.radius_m = params_.wheel.radius_m;
-      in.width_m = params_.wheel.width_m;
+      in.radius_m = wp.radius_m;
+      in.width_m = wp.width_m;
       in.mass_kg = unsprung_kg;
-      in.spin_inertia_kgm2 = params_.wheel.inertia_kgm2.y();
+      in.spin_inertia_kgm2 = wp.inertia_kgm2.y();
       const soil::WheelSoilOutput out = soil_->WheelContact(in, dt);
       if (out.on_soil) {
         world_->ApplyLinkForce(body_, c.wheel_link, out.force_W, wheel.position);
@@ -356,8 +418,7 @@ void Vehicle::Synchronize(double dt) {
     const ContactGeometry geo =
         tmeasy ? FindWheelContact(terrain_, wheel.position, axis_W, params_.tire.unloaded_radius_m,
                                   params_.tire.width_m)
-               : FindWheelContact(terrain_, wheel.position, axis_W, params_.wheel.radius_m,
-                                  params_.wheel.width_m);
+               : FindWheelContact(terrain_, wheel.position, axis_W, wp.radius_m, wp.width_m);
     Vec3 v_point = Vec3::Zero();
     if (geo.in_contact) v_point = world_->LinkPointVelocity(body_, c.wheel_link, geo.point_W);
     TireParams tire = params_.tire;
@@ -422,7 +483,7 @@ void Vehicle::AddBodyContacts() {
     b.contacts.clear();
     const Pose wheel = world_->LinkPose(body_, corner.wheel_link);
     terrain::WheelObstacleContacts(wheel.position, wheel.rotation * Vec3::UnitY(),
-                                   params_.wheel.radius_m, 0.5 * params_.wheel.width_m, *obstacles_,
+                                   corner.wheel->radius_m, 0.5 * corner.wheel->width_m, *obstacles_,
                                    params_.tire.friction, kMaxObstacleContactsPerWheel, &b.scratch,
                                    &b.contacts);
     for (const terrain::BodyContact& c : b.contacts) {
@@ -445,9 +506,16 @@ void Vehicle::Restore(const VehicleSnapshot& snapshot) {
   VB_DEMAND(d.internals.corners.size() == in_->corners.size());
   // The corners point at this vehicle's own axle parameters: keep those pointers.
   std::vector<const AxleParams*> axles(in_->corners.size());
-  for (size_t i = 0; i < axles.size(); ++i) axles[i] = in_->corners[i].axle;
+  std::vector<const WheelParams*> wheels(in_->corners.size());
+  for (size_t i = 0; i < axles.size(); ++i) {
+    axles[i] = in_->corners[i].axle;
+    wheels[i] = in_->corners[i].wheel;
+  }
   *in_ = d.internals;
-  for (size_t i = 0; i < axles.size(); ++i) in_->corners[i].axle = axles[i];
+  for (size_t i = 0; i < axles.size(); ++i) {
+    in_->corners[i].axle = axles[i];
+    in_->corners[i].wheel = wheels[i];
+  }
   world_->SetState(body_, d.body);
   inputs_ = d.inputs;
   state_ = d.state;
@@ -480,7 +548,7 @@ void Vehicle::UpdateState() {
     if (heading_norm > 1e-6) {
       heading_W /= heading_norm;
       const double v = world_->LinkPointVelocity(body_, c.wheel_link, wheel.position).dot(heading_W);
-      const double wr = ws.spin_radps * params_.wheel.radius_m;
+      const double wr = ws.spin_radps * c.wheel->radius_m;
       ws.longitudinal_slip = (wr - v) / std::max({std::abs(wr), std::abs(v), 0.1});
     } else {
       ws.longitudinal_slip = 0.0;  // wheel on its side: no rolling direction

@@ -367,3 +367,44 @@ TEST(VbBatchCliTest, BadInputExitsTwoNamingTheCulprit) {
 }
 
 }  // namespace
+
+namespace {
+
+// Provenance that travels: a batch names its task by the task set path ("tasks/env042.yaml")
+// and its FNV-1a, not by this machine's absolute path; vb_report finds the task again in the
+// task set given with --tasks, and never takes another version of it (same name, other bytes).
+TEST(VbBatchProvenanceTest, TaskSetPathAndReportTasksFlag) {
+  const fs::path root = fs::temp_directory_path() / ("vb_prov_" + std::to_string(::getpid()));
+  fs::remove_all(root);
+  fs::create_directories(root / "set/tasks");
+  fs::create_directories(root / "set/data/worlds");
+  fs::copy_file(VB_SOURCE_DIR "/data/worlds/env042.png", root / "set/data/worlds/env042.png");
+  fs::copy_file(VB_SOURCE_DIR "/tasks/env042.yaml", root / "set/tasks/env042.yaml");
+  std::ofstream(root / "set/tasks/env042.yaml", std::ios::app) << "# a private version\n";
+  const fs::path out = root / "out";
+  const Outcome batch = Sh(kBatch + " " + (root / "set/tasks/env042.yaml").string() +
+                           " --pairs 0 --time-limit 2 --quiet --out " + out.string());
+  ASSERT_EQ(batch.exit_code, 0) << batch.output;
+  const std::string index = ReadFile(out / "index.csv");
+  EXPECT_NE(index.find(",tasks/env042.yaml,"), std::string::npos) << index;
+  EXPECT_EQ(index.find(root.string()), std::string::npos) << index;
+  EXPECT_NE(ReadFile(out / "trials/env042_p0_s0_hmmwv_pid.json")
+                .find("\"task_file\": \"tasks/env042.yaml\""),
+            std::string::npos);
+  fs::rename(root / "set", root / "moved");   // the task set elsewhere now
+  const fs::path png = out / "report/topdown/env042_p0_s0_hmmwv_pid.png";
+  // Without --tasks: vb's shipped env042 has other bytes, so no picture (and a message).
+  const Outcome shipped = Sh(kReport + " " + out.string() + " --topdown all");
+  EXPECT_EQ(shipped.exit_code, 0) << shipped.output;
+  EXPECT_FALSE(fs::exists(png));
+  EXPECT_NE(shipped.output.find("another version of the task"), std::string::npos)
+      << shipped.output;
+  EXPECT_NE(shipped.output.find("--tasks DIR"), std::string::npos) << shipped.output;
+  const Outcome given = Sh(kReport + " " + out.string() + " --topdown all --tasks " +
+                           (root / "moved/tasks").string());
+  EXPECT_EQ(given.exit_code, 0) << given.output;
+  EXPECT_TRUE(fs::exists(png)) << given.output;
+  fs::remove_all(root);
+}
+
+}  // namespace

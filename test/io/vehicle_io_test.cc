@@ -310,5 +310,70 @@ TEST_F(VehicleIoTest, ErrorSteeringTravelTheLinkageCannotFollow) {
                          "the steering linkage does not assemble");
 }
 
+// The vehicle library's mechanisms must fit together; a shipped file with one key changed is bad
+// input at that key's line. `from` is replaced (its `nth` occurrence, 0-based); the error is
+// expected at the line where `at` occurs after the change (the same text if empty).
+class VehicleFitTest : public VehicleIoTest {
+ protected:
+  void ExpectFitError(const std::string& vehicle, const std::string& from, const std::string& to,
+                      int nth, const std::string& at, const std::string& key,
+                      const std::string& what) {
+    std::ifstream in(VB_SOURCE_DIR "/data/vehicles/" + vehicle + ".yaml", std::ios::binary);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    std::string text = ss.str();
+    size_t pos = text.find(from);
+    for (int i = 0; i < nth && pos != std::string::npos; ++i) pos = text.find(from, pos + 1);
+    ASSERT_NE(pos, std::string::npos) << from;
+    text.replace(pos, from.size(), to);
+    const size_t where = at.empty() ? pos : text.find(at, pos);
+    ASSERT_NE(where, std::string::npos) << at;
+    const int line = 1 + static_cast<int>(std::count(text.begin(), text.begin() + where, '\n'));
+    const std::string file = WriteText(vehicle + "_bad.yaml", text);
+    test::ExpectInputError([&] { LoadVehicle(file); }, file, line, key, what);
+  }
+};
+
+TEST_F(VehicleFitTest, LibraryLoads) {
+  for (const char* name : {"art", "vw", "gator", "feda", "man5t", "man7t", "man10t"}) {
+    const vehicles::VehicleParams v =
+        LoadVehicle(std::string(VB_SOURCE_DIR "/data/vehicles/") + name + ".yaml");
+    EXPECT_EQ(v.name, name);
+  }
+}
+
+TEST_F(VehicleFitTest, SteeringMustFitTheSteeredAxles) {
+  ExpectFitError("man5t", "model: rotary_arm", "model: pitman_arm", 0, "", "steering.model",
+                 "pitman_arm steering drives independent suspensions; axle 0 is a solid axle");
+  ExpectFitError("art", "model: pitman_arm", "model: rotary_arm", 0, "", "steering.model",
+                 "rotary_arm steering drives solid axles through a bellcrank; axle 0 is an "
+                 "independent suspension");
+  ExpectFitError("man10t", "bellcrank: true", "bellcrank: false", 1, "model: rotary_arm",
+                 "steering.model", "axle 1 has no bellcrank");
+  ExpectFitError("feda", "      steering_arm_m: 0.1919\n", "", 0, "model: rack_pinion",
+                 "steering.model", "rack_pinion steering needs double_wishbone suspension");
+  ExpectFitError("gator", "steered: false", "steered: true", 0, "model: rack_pinion",
+                 "steering.model", "axle 1 is steered but has a rigid suspension");
+}
+
+TEST_F(VehicleFitTest, SuspensionKeysMustFitTheModel) {
+  ExpectFitError("man5t", "      bellcrank: true\n",
+                 "      bellcrank: true\n      anti_roll_bar_npm: 1000.0\n", 0,
+                 "anti_roll_bar_npm", "axles[0].suspension.anti_roll_bar_npm",
+                 "an anti-roll bar fits an independent suspension");
+  ExpectFitError("vw", "bellcrank: false", "bellcrank: true", 0, "",
+                 "axles[1].suspension.bellcrank", "this axle is not steered");
+  ExpectFitError("feda", "      model: air_wishbone\n",
+                 "      model: air_wishbone\n      bellcrank: true\n", 0, "bellcrank",
+                 "axles[0].suspension.bellcrank",
+                 "a bellcrank is the steering relay of a solid_axle");
+  ExpectFitError("gator", "model: single_wishbone", "model: solid_axle", 0, "steering_arm_m",
+                 "axles[0].suspension.steering_arm_m", "not of model 'solid_axle'");
+  ExpectFitError("art", "model: dc_motor", "model: turbine", 0, "", "engine.model",
+                 "unknown model 'turbine'; valid: map, dc_motor, simple");
+  ExpectFitError("vw", "max_step_s: 0.0025", "max_step_s: 0.00001", 0, "", "max_step_s",
+                 "must be at least 1e-4 s");
+}
+
 }  // namespace
 }  // namespace vb::io

@@ -227,6 +227,42 @@ TEST_F(ViewServerTest, CachedWorldIsReloadedWhenItsFileChanges) {
   }
 }
 
+TEST_F(ViewServerTest, RecordedTaskSetPathIsFoundBesideTheResultsNotInTheCheckout) {
+  // A private version of env042 in its own task set mine/tasks/, results in mine/results/: the
+  // record names "tasks/env042.yaml"; the checkout's tasks/env042.yaml (the configured task
+  // set) has the same name and path but other bytes, and must not be taken.
+  terrain::TaskSpec task = io::LoadTask(kSource + "/tasks/env042.yaml");
+  task.rocks[0].x_m += 1.0;
+  task.height_image = fs::absolute(fs::path(kSource) / "tasks" / task.height_image).string();
+  fs::create_directories(root_ / "mine" / "tasks");
+  fs::create_directories(root_ / "mine" / "results");
+  const fs::path copy = root_ / "mine" / "tasks" / "env042.yaml";
+  io::SaveTask(task, copy.string());
+  const std::string stem = WriteTrial(root_ / "mine" / "results", copy.string());
+  const std::string record = (root_ / "mine" / "results" / (stem + ".json")).string();
+  EXPECT_NE(testing::ReadFileBytes(record).find("\"task_file\": \"tasks/env042.yaml\""),
+            std::string::npos);
+  const std::string bundle = TrialBundleJson(record, config_.bundle);
+  EXPECT_NE(bundle.find("\"file\": " + io::JsonString(copy.string())), std::string::npos)
+      << bundle.substr(0, 300);
+  // Moved away from its task set, and the configured set has only the other version: refused.
+  fs::rename(record, root_ / (stem + ".json"));
+  fs::rename(root_ / "mine" / "results" / (stem + "_traj.csv"), root_ / (stem + "_traj.csv"));
+  try {
+    TrialBundleJson((root_ / (stem + ".json")).string(), config_.bundle);
+    FAIL() << "the checkout's env042 must not stand in for the private version";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("does not match the trial"), std::string::npos)
+        << e.what();
+  }
+  // Given its task set, it is found again.
+  BundleOptions given = config_.bundle;
+  given.tasks_dir = (root_ / "mine" / "tasks").string();
+  EXPECT_NE(TrialBundleJson((root_ / (stem + ".json")).string(), given)
+                .find("\"file\": " + io::JsonString(copy.string())),
+            std::string::npos);
+}
+
 TEST_F(ViewServerTest, ListensOnLoopbackOnly) {
   ViewServer server(config_);
   ASSERT_GT(server.port(), 0);

@@ -7,6 +7,7 @@
 #include <exception>
 #include <optional>
 
+#include "io/build_info.h"
 #include "vb/engine/error.h"
 #include "vb/terrain/scale.h"
 #include "vb/terrain/task.h"
@@ -94,6 +95,11 @@ int ToolMain(const char* tool, const std::function<int()>& body) {
 
 int PrintUsage(const char* usage) {
   std::fputs(usage, stdout);
+  return 0;
+}
+
+int PrintVersion(const char* tool) {
+  std::printf("%s %s (git %s)\n", tool, VB_VERSION, BuildGitCommit());
   return 0;
 }
 

@@ -55,6 +55,8 @@ class ArgReader {
 int ToolMain(const char* tool, const std::function<int()>& body);
 // Prints a usage text to stdout; returns 0 (for `return PrintUsage(kUsage);`).
 int PrintUsage(const char* usage);
+// Prints "<tool> <version> (git <commit>)" to stdout; returns 0 (for `--version`).
+int PrintVersion(const char* tool);
 
 // The same parsing for values that arrive some other way (lists, defaults).
 uint64_t ParseU64(const std::string& flag, const std::string& text);

@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "io/build_info.h"
+#include "io/task_ref.h"
 #include "vb/batch/index.h"
 #include "vb/engine/error.h"
 #include "vb/engine/text_format.h"
@@ -182,7 +183,7 @@ Provenance MakeProvenance(const terrain::TaskSpec& task, const runner::TrialSpec
   Provenance p;
   p.vb_version = VB_VERSION;
   p.git_commit = BuildGitCommit();
-  p.task_file = task.source_file;
+  p.task_file = TaskSetPath(task.source_file);   // the same on every machine (io/task_ref.h)
   p.vehicle = spec.vehicle;
   p.system = spec.system;
   p.seed = spec.seed;

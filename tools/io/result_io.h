@@ -18,7 +18,7 @@ namespace vb::io {
 struct Provenance {
   std::string vb_version;
   std::string git_commit;
-  std::string task_file;
+  std::string task_file;   // "<task set>/<file>", e.g. "tasks/env042.yaml" (io/task_ref.h)
   // 64-bit FNV-1a over the task file bytes followed by the height image bytes, 16 hex digits:
   // identifies the exact world even if the file is edited in place.
   std::string task_fnv1a64;

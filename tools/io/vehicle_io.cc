@@ -9,6 +9,8 @@
 #include "io/yaml_strict.h"
 #include "vb/engine/convex_shape.h"
 #include "vb/engine/error.h"
+#include "vb/vehicles/engine_models.h"
+#include "vb/vehicles/suspension_forces.h"
 #include "vb/vehicles/suspension_kinematics.h"
 
 namespace vb::io {
@@ -109,14 +111,139 @@ vehicles::DoubleWishboneHardpoints ReadHardpoints(const StrictNode& node) {
   return h;
 }
 
-vehicles::SuspensionParams ReadSuspension(const StrictNode& node) {
+// Stops, carrier and (shock models) motion ratio: keys every suspension but `rigid` has.
+void ReadStopsAndCarrier(const StrictMap& m, vehicles::SuspensionParams* p) {
+  p->bump_travel_m = m.Required("bump_travel_m").AsNonNegative();
+  p->rebound_travel_m = m.Required("rebound_travel_m").AsNonNegative();
+  ReadStopTable(m, p);
+  p->carrier_mass_kg = m.Required("carrier_mass_kg").AsPositive();
+  p->carrier_inertia_kgm2 = m.Required("carrier_inertia_kgm2").AsPositiveVec3();
+}
+
+// The shock-based suspensions (single_wishbone, air_wishbone, solid_axle): the shock must stay
+// longer than zero over the whole travel the stops allow.
+void ReadShock(const StrictMap& m, vehicles::SuspensionParams* p) {
+  p->motion_ratio = m.Required("motion_ratio").AsPositive();
+  const StrictNode design = m.Required("spring_design_length_m");
+  p->spring_design_length_m = design.AsPositive();
+  const double hi = p->bump_travel_m + p->stop_deflection_m.back() + 0.03;
+  if (!(vehicles::ShockLength(*p, hi) > 0.0)) {
+    design.Fail("the shock would be shorter than zero at the end of the bump travel (" +
+                FormatDouble(hi) + " m of wheel travel x motion_ratio " +
+                FormatDouble(p->motion_ratio) + ")");
+  }
+}
+
+vehicles::SuspensionParams ReadSuspension(const StrictNode& node, bool steered) {
   vehicles::SuspensionParams p;
   const std::string model = ReadModel(
       node,
       {"model", "stiffness_npm", "preload_n", "spring_stiffness_npm", "spring_free_length_m",
        "hardpoints_in", "damping_nspm", "bump_travel_m", "rebound_travel_m", "stop_deflection_m",
-       "stop_force_n", "carrier_mass_kg", "carrier_inertia_kgm2"},
-      {"strut", "double_wishbone"});
+       "stop_force_n", "carrier_mass_kg", "carrier_inertia_kgm2", "spring_design_length_m",
+       "motion_ratio", "steering_arm_m", "anti_roll_bar_npm", "spring_preload_n",
+       "spring_k2_npm2", "damping_compression_nspm", "degression_compression_spm",
+       "damping_expansion_nspm", "degression_expansion_spm", "bellcrank"},
+      {"strut", "double_wishbone", "single_wishbone", "wishbone_coilover", "air_wishbone",
+       "solid_axle", "rigid"});
+  // single_wishbone and wishbone_coilover (a double wishbone without published hard points) are
+  // the same reduced model: a coil-over at a constant motion ratio.
+  const bool coilover = model == "single_wishbone" || model == "wishbone_coilover";
+  const bool independent_shock = coilover || model == "air_wishbone";
+  // Mechanism keys that do not fit the model get a message that says why, not just "unknown".
+  {
+    const StrictMap any = node.AsMap(
+        {"model", "stiffness_npm", "preload_n", "spring_stiffness_npm", "spring_free_length_m",
+         "hardpoints_in", "damping_nspm", "bump_travel_m", "rebound_travel_m",
+         "stop_deflection_m", "stop_force_n", "carrier_mass_kg", "carrier_inertia_kgm2",
+         "spring_design_length_m", "motion_ratio", "steering_arm_m", "anti_roll_bar_npm",
+         "spring_preload_n", "spring_k2_npm2", "damping_compression_nspm",
+         "degression_compression_spm", "damping_expansion_nspm", "degression_expansion_spm",
+         "bellcrank"});
+    if (any.Has("anti_roll_bar_npm") && !independent_shock) {
+      any.Required("anti_roll_bar_npm")
+          .Fail("an anti-roll bar fits an independent suspension (single_wishbone, "
+                "wishbone_coilover, air_wishbone), not model '" + model + "'");
+    }
+    if (any.Has("bellcrank") && model != "solid_axle") {
+      any.Required("bellcrank").Fail("a bellcrank is the steering relay of a solid_axle, not of "
+                                     "model '" + model + "'");
+    }
+    if (any.Has("steering_arm_m") && !independent_shock) {
+      any.Required("steering_arm_m").Fail("steering_arm_m is the knuckle arm of a wishbone "
+                                          "without hard points (rack steering), not of model '" +
+                                          model + "'");
+    }
+  }
+  if (model == "rigid") {
+    const StrictMap m = node.AsMap({"model", "carrier_mass_kg", "carrier_inertia_kgm2"});
+    p.model = vehicles::SuspensionModel::kRigid;
+    p.carrier_mass_kg = m.Required("carrier_mass_kg").AsPositive();
+    p.carrier_inertia_kgm2 = m.Required("carrier_inertia_kgm2").AsPositiveVec3();
+    return p;
+  }
+  if (independent_shock) {
+    const bool air = model == "air_wishbone";
+    const StrictMap m =
+        air ? node.AsMap({"model", "spring_stiffness_npm", "spring_preload_n",
+                          "spring_design_length_m", "motion_ratio", "damping_nspm",
+                          "steering_arm_m", "anti_roll_bar_npm", "bump_travel_m",
+                          "rebound_travel_m",
+                          "stop_deflection_m", "stop_force_n", "carrier_mass_kg",
+                          "carrier_inertia_kgm2"})
+            : node.AsMap({"model", "spring_stiffness_npm", "spring_free_length_m",
+                          "spring_design_length_m", "motion_ratio", "damping_nspm",
+                          "steering_arm_m", "anti_roll_bar_npm", "bump_travel_m",
+                          "rebound_travel_m", "stop_deflection_m", "stop_force_n",
+                          "carrier_mass_kg", "carrier_inertia_kgm2"});
+    p.model = air ? vehicles::SuspensionModel::kAirWishbone
+                  : vehicles::SuspensionModel::kSingleWishbone;
+    p.spring_law = air ? vehicles::SpringLaw::kAir : vehicles::SpringLaw::kLinear;
+    p.spring_stiffness_npm = m.Required("spring_stiffness_npm").AsPositive();
+    if (air) {
+      p.spring_preload_n = m.Required("spring_preload_n").AsPositive();
+    } else {
+      p.spring_free_length_m = m.Required("spring_free_length_m").AsPositive();
+    }
+    if (m.Has("steering_arm_m")) {
+      const StrictNode arm = m.Required("steering_arm_m");
+      p.steering_arm_m = arm.AsPositive();
+      if (!steered) arm.Fail("steering_arm_m on an axle that is not steered");
+    }
+    p.damping_nspm = m.Required("damping_nspm").AsNonNegative();
+    p.damping_expansion_nspm = p.damping_nspm;
+    if (m.Has("anti_roll_bar_npm")) {
+      p.anti_roll_bar_npm = m.Required("anti_roll_bar_npm").AsNonNegative();
+    }
+    ReadStopsAndCarrier(m, &p);
+    ReadShock(m, &p);
+    return p;
+  }
+  if (model == "solid_axle") {
+    const StrictMap m = node.AsMap(
+        {"model", "spring_stiffness_npm", "spring_k2_npm2", "spring_free_length_m",
+         "spring_design_length_m", "motion_ratio", "damping_compression_nspm",
+         "degression_compression_spm", "damping_expansion_nspm", "degression_expansion_spm",
+         "bellcrank", "bump_travel_m", "rebound_travel_m", "stop_deflection_m", "stop_force_n",
+         "carrier_mass_kg", "carrier_inertia_kgm2"});
+    p.model = vehicles::SuspensionModel::kSolidAxle;
+    p.spring_law = vehicles::SpringLaw::kProgressive;
+    p.spring_stiffness_npm = m.Required("spring_stiffness_npm").AsPositive();
+    p.spring_k2_npm2 = m.Required("spring_k2_npm2").AsNonNegative();
+    p.spring_free_length_m = m.Required("spring_free_length_m").AsPositive();
+    p.damping_nspm = m.Required("damping_compression_nspm").AsNonNegative();
+    p.degression_compression_spm = m.Required("degression_compression_spm").AsNonNegative();
+    p.damping_expansion_nspm = m.Required("damping_expansion_nspm").AsNonNegative();
+    p.degression_expansion_spm = m.Required("degression_expansion_spm").AsNonNegative();
+    const StrictNode bellcrank = m.Required("bellcrank");
+    p.bellcrank = bellcrank.AsBool();
+    if (p.bellcrank && !steered) {
+      bellcrank.Fail("a bellcrank relays the steering: this axle is not steered");
+    }
+    ReadStopsAndCarrier(m, &p);
+    ReadShock(m, &p);
+    return p;
+  }
   const bool strut = model == "strut";
   const StrictMap m =
       strut ? node.AsMap({"model", "stiffness_npm", "preload_n", "damping_nspm", "bump_travel_m",
@@ -137,11 +264,7 @@ vehicles::SuspensionParams ReadSuspension(const StrictNode& node) {
     p.hardpoints = ReadHardpoints(m.Required("hardpoints_in"));
   }
   p.damping_nspm = m.Required("damping_nspm").AsNonNegative();
-  p.bump_travel_m = m.Required("bump_travel_m").AsNonNegative();
-  p.rebound_travel_m = m.Required("rebound_travel_m").AsNonNegative();
-  ReadStopTable(m, &p);
-  p.carrier_mass_kg = m.Required("carrier_mass_kg").AsPositive();
-  p.carrier_inertia_kgm2 = m.Required("carrier_inertia_kgm2").AsPositiveVec3();
+  ReadStopsAndCarrier(m, &p);
   if (!strut) {
     // The linkage must assemble over the whole travel the stops allow (plus the stop stroke).
     const double lo = -p.rebound_travel_m - p.stop_deflection_m.back();
@@ -156,9 +279,20 @@ vehicles::SuspensionParams ReadSuspension(const StrictNode& node) {
   return p;
 }
 
+vehicles::WheelParams ReadWheel(const StrictNode& node) {
+  const StrictMap m = node.AsMap({"radius_m", "width_m", "mass_kg", "inertia_kgm2"});
+  vehicles::WheelParams p;
+  p.radius_m = m.Required("radius_m").AsPositive();
+  p.width_m = m.Required("width_m").AsPositive();
+  p.mass_kg = m.Required("mass_kg").AsPositive();
+  p.inertia_kgm2 = m.Required("inertia_kgm2").AsPositiveVec3();
+  return p;
+}
+
 AxleParams ReadAxle(const StrictNode& node) {
-  const StrictMap m = node.AsMap(
-      {"x_m", "half_track_m", "z_m", "steered", "driven", "brake_torque_nm", "suspension"});
+  // `wheel`: an axle whose wheels differ from the vehicle's (the Gator's front and rear tires).
+  const StrictMap m = node.AsMap({"x_m", "half_track_m", "z_m", "steered", "driven",
+                                  "brake_torque_nm", "suspension", "wheel"});
   AxleParams p;
   p.x_m = m.Required("x_m").AsDouble();
   p.half_track_m = m.Required("half_track_m").AsPositive();
@@ -166,7 +300,8 @@ AxleParams ReadAxle(const StrictNode& node) {
   p.steered = m.Required("steered").AsBool();
   p.driven = m.Required("driven").AsBool();
   p.brake_torque_nm = m.Required("brake_torque_nm").AsNonNegative();
-  p.suspension = ReadSuspension(m.Required("suspension"));
+  p.suspension = ReadSuspension(m.Required("suspension"), p.steered);
+  if (m.Has("wheel")) p.wheel = ReadWheel(m.Required("wheel"));
   return p;
 }
 
@@ -192,8 +327,8 @@ vehicles::SteeringParams ReadSteering(const StrictNode& node) {
   const std::string model =
       ReadModel(node,
                 {"model", "max_angle_rad", "max_pinion_angle_rad", "pinion_radius_m",
-                 "link_mass_kg", "link_position_B"},
-                {"ackermann", "rack_pinion"});
+                 "link_mass_kg", "link_position_B", "wheel_per_arm"},
+                {"ackermann", "rack_pinion", "pitman_arm", "rotary_arm"});
   // Ackermann geometry and the kinematics break down at a right angle.
   auto below_right_angle = [](const StrictNode& n) {
     const double a = n.AsPositive();
@@ -204,6 +339,17 @@ vehicles::SteeringParams ReadSteering(const StrictNode& node) {
     const StrictMap m = node.AsMap({"model", "max_angle_rad"});
     p.model = vehicles::SteeringModel::kAckermann;
     p.max_angle_rad = below_right_angle(m.Required("max_angle_rad"));
+  } else if (model == "pitman_arm" || model == "rotary_arm") {
+    const StrictMap m = node.AsMap({"model", "max_angle_rad", "wheel_per_arm"});
+    p.model = model == "pitman_arm" ? vehicles::SteeringModel::kPitmanArm
+                                    : vehicles::SteeringModel::kRotaryArm;
+    p.max_angle_rad = below_right_angle(m.Required("max_angle_rad"));
+    const StrictNode ratio = m.Required("wheel_per_arm");
+    p.wheel_per_arm = ratio.AsPositive();
+    if (!(p.max_angle_rad * p.wheel_per_arm < 0.5 * M_PI)) {
+      ratio.Fail("the road-wheel angle max_angle_rad x wheel_per_arm must be below pi/2, got " +
+                 FormatDouble(p.max_angle_rad * p.wheel_per_arm));
+    }
   } else {
     const StrictMap m = node.AsMap({"model", "max_pinion_angle_rad", "pinion_radius_m",
                                     "link_mass_kg", "link_position_B"});
@@ -216,15 +362,6 @@ vehicles::SteeringParams ReadSteering(const StrictNode& node) {
   return p;
 }
 
-vehicles::WheelParams ReadWheel(const StrictNode& node) {
-  const StrictMap m = node.AsMap({"radius_m", "width_m", "mass_kg", "inertia_kgm2"});
-  vehicles::WheelParams p;
-  p.radius_m = m.Required("radius_m").AsPositive();
-  p.width_m = m.Required("width_m").AsPositive();
-  p.mass_kg = m.Required("mass_kg").AsPositive();
-  p.inertia_kgm2 = m.Required("inertia_kgm2").AsPositiveVec3();
-  return p;
-}
 
 vehicles::TmeasyDirection ReadTmeasyDirection(const StrictNode& node) {
   const StrictMap m = node.AsMap({"df0", "fm", "sm", "fs", "ss"});
@@ -289,9 +426,39 @@ vehicles::TireParams ReadTire(const StrictNode& node) {
   return p;
 }
 
+// Engine: a torque map (`model: map`, the default when `model` is absent), a DC motor or
+// Chrono's simple engine, both turned into a map (engine_models.h).
 vehicles::EngineParams ReadEngine(const StrictNode& node) {
-  const StrictMap m = node.AsMap({"max_speed_radps", "map"});
   vehicles::EngineParams p;
+  const StrictMap any = node.AsMap({"model", "max_speed_radps", "map", "stall_torque_nm",
+                                    "no_load_speed_radps", "rotor_inertia_kgm2", "max_torque_nm",
+                                    "max_power_w"});
+  const std::string model = any.Has("model")
+                                ? ReadModel(node, {"model", "max_speed_radps", "map",
+                                                   "stall_torque_nm", "no_load_speed_radps",
+                                                   "rotor_inertia_kgm2", "max_torque_nm",
+                                                   "max_power_w"},
+                                            {"map", "dc_motor", "simple"})
+                                : "map";
+  if (model == "dc_motor") {
+    const StrictMap m = node.AsMap(
+        {"model", "stall_torque_nm", "no_load_speed_radps", "rotor_inertia_kgm2"});
+    const double no_load = m.Required("no_load_speed_radps").AsPositive();
+    p.map = vehicles::DcMotorMap(m.Required("stall_torque_nm").AsPositive(), no_load);
+    p.max_speed_radps = vehicles::DcMotorMapEnd(no_load);
+    p.rotor_inertia_kgm2 = m.Required("rotor_inertia_kgm2").AsNonNegative();
+    return p;
+  }
+  if (model == "simple") {
+    const StrictMap m = node.AsMap({"model", "max_torque_nm", "max_power_w", "max_speed_radps"});
+    const double max_speed = m.Required("max_speed_radps").AsPositive();
+    p.map = vehicles::SimpleEngineMap(m.Required("max_torque_nm").AsPositive(),
+                                      m.Required("max_power_w").AsPositive(), max_speed);
+    p.max_speed_radps = vehicles::SimpleEngineMapEnd(max_speed);
+    return p;
+  }
+  const StrictMap m = any.Has("model") ? node.AsMap({"model", "max_speed_radps", "map"})
+                                       : node.AsMap({"max_speed_radps", "map"});
   p.max_speed_radps = m.Required("max_speed_radps").AsPositive();
   // Linear interpolation needs two points and strictly ascending speeds.
   for (const StrictNode& item : m.Required("map").AsList(2)) {
@@ -341,8 +508,12 @@ vehicles::DrivelineParams ReadDriveline(const StrictNode& node) {
   const StrictMap m = node.AsMap({"conical_ratio", "lock_axle_differentials",
                                   "lock_central_differential", "lock_torque_limit_nm",
                                   "driveshaft_inertia_kgm2", "central_box_inertia_kgm2",
-                                  "axle_shaft_inertia_kgm2", "axle_box_inertia_kgm2"});
+                                  "axle_shaft_inertia_kgm2", "axle_box_inertia_kgm2",
+                                  "lock_coupling_nms_per_rad"});
   vehicles::DrivelineParams p;
+  if (m.Has("lock_coupling_nms_per_rad")) {
+    p.lock_coupling_nms_per_rad = m.Required("lock_coupling_nms_per_rad").AsPositive();
+  }
   p.conical_ratio = m.Required("conical_ratio").AsPositive();
   p.lock_axle_differentials = m.Required("lock_axle_differentials").AsBool();
   p.lock_central_differential = m.Required("lock_central_differential").AsBool();
@@ -354,27 +525,64 @@ vehicles::DrivelineParams ReadDriveline(const StrictNode& node) {
   return p;
 }
 
+// Steering mechanisms and the suspensions of the steered axles must fit together: a rack needs
+// tie-rod hard points (double_wishbone) or a knuckle arm (single_wishbone with steering_arm_m), a
+// pitman arm an independent suspension, a rotary arm solid axles with a bellcrank.
+void CheckSteeringFits(const VehicleParams& v, const StrictNode& steering) {
+  using vehicles::SuspensionModel;
+  const StrictNode model = steering.AsMap({"model", "max_angle_rad", "max_pinion_angle_rad",
+                                           "pinion_radius_m", "link_mass_kg", "link_position_B",
+                                           "wheel_per_arm"})
+                               .Required("model");
+  const std::string name = model.AsString();
+  for (size_t i = 0; i < v.axles.size(); ++i) {
+    const vehicles::SuspensionParams& su = v.axles[i].suspension;
+    if (!v.axles[i].steered) continue;
+    const std::string axle = "axle " + std::to_string(i) + " ";
+    const bool independent = su.model != SuspensionModel::kSolidAxle &&
+                             su.model != SuspensionModel::kRigid;
+    if (su.model == SuspensionModel::kRigid) {
+      model.Fail(axle + "is steered but has a rigid suspension (no knuckle to turn)");
+    }
+    if (name == "rack_pinion" && su.model != SuspensionModel::kDoubleWishbone &&
+        !(independent && su.steering_arm_m > 0.0)) {
+      model.Fail("rack_pinion steering needs double_wishbone suspension (tie-rod hard points) "
+                 "or a wishbone with steering_arm_m on every steered axle; " + axle +
+                 "has neither");
+    }
+    if (name == "pitman_arm" && !independent) {
+      model.Fail("pitman_arm steering drives independent suspensions; " + axle +
+                 "is a solid axle (use rotary_arm with a bellcrank)");
+    }
+    if (name == "rotary_arm" && !(su.model == SuspensionModel::kSolidAxle && su.bellcrank)) {
+      model.Fail("rotary_arm steering drives solid axles through a bellcrank; " + axle +
+                 (independent ? "is an independent suspension" : "has no bellcrank"));
+    }
+  }
+}
+
 }  // namespace
 
 vehicles::VehicleParams LoadVehicle(const std::string& path) {
   const StrictNode root = LoadYamlFile(path);
   const StrictMap top = root.AsMap({"name", "chassis", "axles", "steering", "wheel", "tire",
-                                    "engine", "transmission", "driveline"});
+                                    "engine", "transmission", "driveline", "max_step_s"});
   VehicleParams v;
   const StrictNode name = top.Required("name");
   v.name = name.AsString();
   if (v.name.empty()) name.Fail("name is empty");
+  if (top.Has("max_step_s")) {
+    const StrictNode step = top.Required("max_step_s");
+    v.max_step_s = step.AsPositive();
+    if (v.max_step_s < 1e-4) {
+      step.Fail("must be at least 1e-4 s, got " + FormatDouble(v.max_step_s));
+    }
+  }
   v.chassis = ReadChassis(top.Required("chassis"));
   v.axles = ReadAxles(top.Required("axles"));
   v.steering = ReadSteering(top.Required("steering"));
+  CheckSteeringFits(v, top.Required("steering"));
   if (v.steering.model == vehicles::SteeringModel::kRackPinion) {
-    for (const AxleParams& axle : v.axles) {
-      if (axle.steered && axle.suspension.model != vehicles::SuspensionModel::kDoubleWishbone) {
-        top.Required("steering").Fail(
-            "rack_pinion steering needs double_wishbone suspension (tie-rod hard points) on "
-            "every steered axle");
-      }
-    }
     // The rack's whole travel must assemble too (DEF-8 of the probe: a pinion angle just below
     // pi/2 on the HMMWV pulls the tie rod past where the linkage closes). The same table the
     // vehicle builds, so a vehicle that loads always builds.
@@ -383,6 +591,7 @@ vehicles::VehicleParams LoadVehicle(const std::string& path) {
     const double rack_max_m = v.steering.max_pinion_angle_rad * v.steering.pinion_radius_m;
     for (const AxleParams& axle : v.axles) {
       if (!axle.steered) continue;
+      if (axle.suspension.model != vehicles::SuspensionModel::kDoubleWishbone) break;
       try {
         vehicles::SteerAngleTable(axle.suspension.hardpoints, rack_max_m, vehicles::kSteerAngleTableSamples);
       } catch (const std::runtime_error&) {

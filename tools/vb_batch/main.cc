@@ -411,6 +411,7 @@ int main(int argc, char** argv) {
   return vb::io::ToolMain("vb_batch", [&] {
     const vb_batch::Options o = vb_batch::ParseArgs(argc, argv);
     if (o.help) return vb::io::PrintUsage(vb_batch::kUsage);
+    if (o.version) return vb::io::PrintVersion("vb_batch");
     return vb_batch::Run(o);
   });
 }

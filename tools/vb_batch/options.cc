@@ -38,6 +38,7 @@ execution:
                        (default: report them and stop)
   --quiet              no per-trial lines or progress bar, only the summary
   --help               this text
+  --version            the version and git commit of this build
 
 outputs in DIR: trials/<task>_p<K>_s<seed>_<vehicle>_<system>[_perc-<preset>].json and _traj.csv
 per trial,
@@ -80,6 +81,8 @@ Options ParseArgs(int argc, char** argv) {
     const std::string& a = args.arg();
     if (a == "--help" || a == "-h") {
       o.help = true;
+    } else if (a == "--version") {
+      o.version = true;
     } else if (a == "--pairs") {
       o.pairs = args.Value();
     } else if (a == "--vehicles") {
@@ -116,7 +119,7 @@ Options ParseArgs(int argc, char** argv) {
       o.envs.push_back(a);
     }
   }
-  if (o.help) return o;
+  if (o.help || o.version) return o;
   if (o.envs.empty()) throw vb::InputError("", 0, "ENV", "no environments given (see --help)");
   if (o.out_dir.empty()) throw vb::InputError("", 0, "--out", "required (see --help)");
   return o;

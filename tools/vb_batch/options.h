@@ -29,6 +29,7 @@ struct Options {
   bool rerun_stale = false;
   bool quiet = false;
   bool help = false;
+  bool version = false;
 };
 
 // Throws vb::InputError naming the flag.

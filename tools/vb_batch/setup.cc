@@ -9,6 +9,7 @@
 #include <filesystem>
 
 #include "io/cli_args.h"
+#include "io/data_dir.h"
 #include "io/perception_io.h"
 #include "io/soil_io.h"
 #include "io/task_io.h"
@@ -76,9 +77,9 @@ std::vector<std::string> ResolveEnvs(const std::vector<std::string>& envs) {
   return files;
 }
 
-std::string DataDir() {
-  const char* env = std::getenv("VB_DATA_DIR");
-  return env != nullptr ? env : VB_SOURCE_DIR "/data";
+const std::string& DataDir() {
+  static const std::string dir = vb::io::DataDir();   // located and checked once
+  return dir;
 }
 
 int DefaultJobs() {

@@ -18,8 +18,9 @@ std::vector<std::string> ResolveEnvs(const std::vector<std::string>& envs);
 // The matrix. A task that fails to load is kept with its error (its trials become `error`).
 vb::batch::MatrixSpec BuildSpec(const Options& o, const std::vector<std::string>& files);
 
-// $VB_DATA_DIR, or the source tree's data/.
-std::string DataDir();
+// The data directory (io::DataDir(): $VB_DATA_DIR or share/vb/data next to the executable),
+// located and checked on the first call.
+const std::string& DataDir();
 // CPUs this process may run on (respects affinity masks set by Slurm or taskset).
 int DefaultJobs();
 // Provenance of a trial of task `t` (this build, this host, the task's hash).

@@ -50,6 +50,7 @@ start/goal pairs on the 60 m circle, each with a global A* path on the obstacle 
   --picture FILE     also write a PNG picture of the world (height shading, semantics,
                      obstacles, paths; docs/generator.md)
   --help             this text
+  --version          the version and git commit of this build
 
 Without --env, --seed, --name, --elevation, --terrain and --density are all required.
 Prints the elevation statistics of the generated world (as reference_verti_bench.md §9).
@@ -58,6 +59,7 @@ Exit codes: 0 success, 2 bad arguments or unwritable output, 1 other errors.
 
 struct Options {
   bool help = false;
+  bool version = false;
   bool have_seed = false;
   bool have_name = false;
   vb::terrain::GeneratorOptions gen;
@@ -87,6 +89,8 @@ Options ParseArgs(int argc, char** argv) {
     const std::string& a = args.arg();
     if (a == "--help" || a == "-h") {
       o.help = true;
+    } else if (a == "--version") {
+      o.version = true;
     } else if (a == "--seed") {
       o.gen.seed = args.U64Value();
       o.have_seed = true;
@@ -128,7 +132,7 @@ Options ParseArgs(int argc, char** argv) {
       args.Unknown();
     }
   }
-  if (o.help) return o;
+  if (o.help || o.version) return o;
   if (o.have_env) {
     for (const auto& [given, flag] : {std::pair{o.have_seed, "--seed"},
                                       std::pair{o.have_elevation, "--elevation"},
@@ -196,6 +200,7 @@ int main(int argc, char** argv) {
   return vb::io::ToolMain("vb_gen", [&] {
     const Options o = ParseArgs(argc, argv);
     if (o.help) return vb::io::PrintUsage(kUsage);
+    if (o.version) return vb::io::PrintVersion("vb_gen");
     return Run(o);
   });
 }

@@ -10,12 +10,13 @@
 
 #include "frame.h"
 #include "io/cli_args.h"
+#include "io/data_dir.h"
 #include "server.h"
 #include "vb/engine/error.h"
 
 namespace {
 
-constexpr const char* kUsage = R"(usage: vb_gym [--help]
+constexpr const char* kUsage = R"(usage: vb_gym [--help] [--version]
 
 Hosts one environment (tasks, vehicle, one running episode) and serves the vb gym protocol,
 version 1 (docs/gym_protocol.md), on stdin/stdout: length-prefixed frames of a JSON header and
@@ -30,7 +31,8 @@ The process ends when the client sends close (exit 0), closes its end of the pip
 sends a frame that breaks the framing (an error frame, then exit 2).
 
 environment:
-  VB_DATA_DIR   directory of vehicles/ and soils/ (default: the source tree's data/)
+  VB_DATA_DIR   directory of vehicles/ and soils/ (default: share/vb/data next to this
+                program's bin/)
 
 exit codes: 0 client closed, 1 internal error, 2 bad arguments or broken framing
 )";
@@ -42,6 +44,7 @@ int main(int argc, char** argv) {
     vb::io::ArgReader args(argc, argv);
     while (args.Next()) {
       if (args.Is("--help") || args.Is("-h")) return vb::io::PrintUsage(kUsage);
+      if (args.Is("--version")) return vb::io::PrintVersion("vb_gym");
       args.Unknown();
     }
     if (!vb::gym::HostIsLittleEndian()) {
@@ -58,8 +61,7 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "vb_gym: error: cannot set up stdout\n");
       return 1;
     }
-    const char* env_data = std::getenv("VB_DATA_DIR");
-    vb::gym::Server server(env_data != nullptr ? env_data : VB_SOURCE_DIR "/data");
+    vb::gym::Server server(vb::io::DataDir());
     vb::gym::Frame request;
     std::string reply;
     std::vector<uint8_t> payload;

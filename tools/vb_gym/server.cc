@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
 #include <cstdio>
 #include <filesystem>
 #include <stdexcept>
@@ -19,6 +20,7 @@
 #include "io/result_io.h"
 #include "io/soil_io.h"
 #include "io/task_io.h"
+#include "io/task_ref.h"
 #include "io/vehicle_io.h"
 #include "io/yaml_strict.h"
 #include "vb/batch/index.h"
@@ -575,21 +577,48 @@ void Server::WriteIndex(const json& j, std::string* reply) {
     if (e.path().extension() == ".json") files.push_back(e.path());
   }
   std::sort(files.begin(), files.end());
-  // Labels and scale come from the task file a record names (the configured tasks first).
-  std::vector<terrain::TaskSpec> loaded;
-  auto task_of = [&](const batch::TrialRow& r) -> const terrain::TaskSpec& {
-    for (const std::vector<terrain::TaskSpec>* list : {&tasks_, &loaded}) {
-      for (const terrain::TaskSpec& t : *list) {
-        if (t.source_file == r.task_file) return t;
+  // Labels and scale come from the task a record names, identified by its name and FNV-1a:
+  // a configured task, else the record's task set path (io::TaskFileCandidates) in the
+  // configured tasks' directories, then beside the results.
+  std::deque<std::pair<terrain::TaskSpec, std::string>> known;   // task, FNV-1a (stable refs)
+  std::vector<std::string> set_dirs;
+  for (const terrain::TaskSpec& t : tasks_) {
+    known.emplace_back(t, io::MakeProvenance(t, runner::TrialSpec()).task_fnv1a64);
+    const std::string d = fs::path(t.source_file).parent_path().string();
+    if (std::find(set_dirs.begin(), set_dirs.end(), d) == set_dirs.end()) set_dirs.push_back(d);
+  }
+  auto matches = [](const batch::TrialRow& r, const terrain::TaskSpec& t, const std::string& h) {
+    return t.name == r.task && (r.task_fnv1a64.empty() || h == r.task_fnv1a64);
+  };
+  auto task_of = [&](const batch::TrialRow& r, const fs::path& record) -> const terrain::TaskSpec& {
+    for (const auto& [t, h] : known) {
+      if (matches(r, t, h)) return t;
+    }
+    std::vector<std::string> candidates;
+    for (const std::string& d : set_dirs) {
+      for (const std::string& c : io::TaskFileCandidates(r.task_file, record.string(), d)) {
+        if (std::find(candidates.begin(), candidates.end(), c) == candidates.end()) {
+          candidates.push_back(c);
+        }
       }
     }
-    loaded.push_back(io::LoadTask(r.task_file));
-    return loaded.back();
+    for (const std::string& c : candidates) {
+      std::error_code ec;
+      if (!fs::is_regular_file(c, ec)) continue;
+      terrain::TaskSpec t = io::LoadTask(c);
+      std::string h = io::MakeProvenance(t, runner::TrialSpec()).task_fnv1a64;
+      if (!matches(r, t, h)) continue;
+      known.emplace_back(std::move(t), std::move(h));
+      return known.back().first;
+    }
+    throw RequestError("op 'write_index': the task of " + record.string() + " (" + r.task_file +
+                       ", FNV-1a " + r.task_fnv1a64 + ") is neither configured nor found in "
+                       "the configured tasks' directories or beside the results");
   };
   std::vector<batch::TrialRow> rows;
   for (const fs::path& f : files) {
     batch::TrialRow r = io::ReadTrialJson(f.string());
-    const terrain::TaskSpec& t = task_of(r);
+    const terrain::TaskSpec& t = task_of(r, f);
     r.scale = t.scale;
     r.elevation = std::string(terrain::ElevationLevelName(t.labels.elevation));
     r.terrain = std::string(terrain::TerrainTypeName(t.labels.terrain));

@@ -38,12 +38,14 @@ are for local use; they are not part of the vb benchmark and are not committed.
   --scale F          scale variant: every length times F (e.g. 1/6, 1/10; default 1)
   --picture FILE     also write a PNG picture of the world
   --help             this text
+  --version          the version and git commit of this build
 
 Exit codes: 0 success, 2 bad input (the message names file, line and key), 1 other errors.
 )";
 
 struct Options {
   bool help = false;
+  bool version = false;
   std::string config, world, labels, out_dir, image_dir, name, picture;
   double scale = 1.0;
 };
@@ -55,6 +57,8 @@ Options ParseArgs(int argc, char** argv) {
     const std::string& a = args.arg();
     if (a == "--help" || a == "-h") {
       o.help = true;
+    } else if (a == "--version") {
+      o.version = true;
     } else if (a == "--config") {
       o.config = args.Value();
     } else if (a == "--world") {
@@ -77,7 +81,7 @@ Options ParseArgs(int argc, char** argv) {
       args.Unknown();
     }
   }
-  if (o.help) return o;
+  if (o.help || o.version) return o;
   if (o.config.empty()) throw vb::InputError("", 0, "--config", "required (see --help)");
   if (o.world.empty()) throw vb::InputError("", 0, "--world", "required (see --help)");
   if (o.out_dir.empty()) throw vb::InputError("", 0, "--out", "required (see --help)");
@@ -132,6 +136,7 @@ int main(int argc, char** argv) {
   return vb::io::ToolMain("vb_import", [&] {
     const Options o = ParseArgs(argc, argv);
     if (o.help) return vb::io::PrintUsage(kUsage);
+    if (o.version) return vb::io::PrintVersion("vb_import");
     return Run(o);
   });
 }

@@ -7,7 +7,10 @@
 
 #include "common.h"
 #include "io/batch_io.h"
+#include "io/data_dir.h"
+#include "io/result_io.h"
 #include "io/task_io.h"
+#include "io/task_ref.h"
 #include "io/yaml_strict.h"
 #include "vb/batch/aggregate.h"
 #include "vb/engine/error.h"
@@ -16,8 +19,33 @@ namespace vb_report {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+// The task a trial ran on: the first of io::TaskFileCandidates with the record's task name and
+// FNV-1a (task file + height image). Throws InputError listing where it looked.
+vb::terrain::TaskSpec FindRecordedTask(const vb::batch::TrialRow& r, const std::string& record,
+                                       const std::string& tasks_dir) {
+  std::string tried;
+  for (const std::string& path : vb::io::TaskFileCandidates(r.task_file, record, tasks_dir)) {
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec)) continue;
+    tried += (tried.empty() ? "" : ", ") + path;
+    vb::terrain::TaskSpec task = vb::io::LoadTask(path);
+    const std::string hash =
+        vb::io::MakeProvenance(task, vb::runner::TrialSpec()).task_fnv1a64;
+    if (task.name == r.task && (r.task_fnv1a64.empty() || hash == r.task_fnv1a64)) return task;
+    tried += " (another version of the task)";
+  }
+  throw vb::InputError(record, 0, "provenance.task_file",
+                       "task " + r.task_file + " (FNV-1a " + r.task_fnv1a64 + ") not found" +
+                           (tried.empty() ? std::string() : "; found only: " + tried) +
+                           "; give its task set with --tasks DIR");
+}
+
+}  // namespace
+
 int Report(const std::vector<std::string>& args) {
-  std::string dir, out, topdown;
+  std::string dir, out, topdown, tasks_dir;
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     auto value = [&]() -> std::string {
@@ -28,6 +56,8 @@ int Report(const std::vector<std::string>& args) {
       out = value();
     } else if (a == "--topdown") {
       topdown = value();
+    } else if (a == "--tasks") {
+      tasks_dir = value();
     } else if (!a.empty() && a[0] == '-') {
       throw vb::InputError("", 0, a, "unknown option (see --help)");
     } else if (dir.empty()) {
@@ -38,6 +68,7 @@ int Report(const std::vector<std::string>& args) {
   }
   if (dir.empty()) throw vb::InputError("", 0, "DIR", "no batch directory given (see --help)");
   if (out.empty()) out = (fs::path(dir) / "report").string();
+  if (tasks_dir.empty()) tasks_dir = vb::io::TasksDir();
   const std::vector<vb::batch::TrialRow> rows = ReadIndex(dir);
   std::vector<std::string> wanted;   // --topdown trial stems; empty = all
   if (!topdown.empty() && topdown != "all") {
@@ -92,10 +123,12 @@ int Report(const std::vector<std::string>& args) {
         continue;
       }
       if (r.task_file.empty()) continue;
-      auto it = tasks.find(r.task_file);
+      const std::string record = (fs::path(dir) / "trials" / (stem + ".json")).string();
+      const std::string key = r.task_file + "#" + r.task_fnv1a64;
+      auto it = tasks.find(key);
       if (it == tasks.end()) {
         try {
-          it = tasks.emplace(r.task_file, vb::io::LoadTask(r.task_file)).first;
+          it = tasks.emplace(key, FindRecordedTask(r, record, tasks_dir)).first;
         } catch (const vb::InputError& e) {
           std::fprintf(stderr, "vb_report: no picture for %s: %s\n", stem.c_str(), e.what());
           continue;
@@ -109,7 +142,6 @@ int Report(const std::vector<std::string>& args) {
         std::snprintf(caption, sizeof(caption), "%s  %s", stem.c_str(), r.status.c_str());
       }
       // The picture draws the trajectory: it must be the record's, complete (DEF-16).
-      const std::string record = (fs::path(dir) / "trials" / (stem + ".json")).string();
       const std::string traj = (fs::path(dir) / "trials" / (stem + "_traj.csv")).string();
       const std::string problem = vb::io::TrajectoryProblem(traj, vb::io::ReadTrialJson(record));
       if (!problem.empty()) throw vb::InputError(record, 0, "--topdown", problem);

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "io/cli_args.h"
+#include "io/data_dir.h"
 #include "io/perception_io.h"
 #include "io/result_io.h"
 #include "io/soil_io.h"
@@ -27,7 +28,7 @@ Runs navigation trials on TASK (a task file, e.g. tasks/env042.yaml) and writes 
 
 options:
   --vehicle NAME     vehicle description $VB_DATA_DIR/vehicles/NAME.yaml (required);
-                     VB_DATA_DIR defaults to the source tree's data/ directory
+                     VB_DATA_DIR defaults to share/vb/data next to this program's bin/
   --system NAME      mobility system (default: pid): pid, eh, mppi (the paper's classical
                      baselines), eh_original, mppi_original (the original code's variants,
                      docs/baselines.md)
@@ -45,6 +46,7 @@ options:
                      benchmark results)
   --quiet            no per-trial lines, only the final summary
   --help             this text
+  --version          the version and git commit of this build
 
 outputs, per trial, in DIR:
   <task>_p<K>_s<seed>_<vehicle>_<system>.json       status, failure type, metrics, provenance
@@ -72,6 +74,7 @@ struct Options {
   double time_limit_s = vb::runner::EpisodeRules().time_limit_s;
   bool quiet = false;
   bool help = false;
+  bool version = false;
 };
 
 Options ParseArgs(int argc, char** argv) {
@@ -81,6 +84,8 @@ Options ParseArgs(int argc, char** argv) {
     const std::string& a = args.arg();
     if (a == "--help" || a == "-h") {
       o.help = true;
+    } else if (a == "--version") {
+      o.version = true;
     } else if (a == "--vehicle") {
       o.vehicle = args.Value();
     } else if (a == "--system") {
@@ -109,15 +114,14 @@ Options ParseArgs(int argc, char** argv) {
       throw vb::InputError("", 0, a, "more than one task given (see --help)");
     }
   }
-  if (o.help) return o;
+  if (o.help || o.version) return o;
   if (o.task_path.empty()) throw vb::InputError("", 0, "TASK", "no task file given (see --help)");
   if (o.vehicle.empty()) throw vb::InputError("", 0, "--vehicle", "required (see --help)");
   return o;
 }
 
 int Run(const Options& o) {
-  const char* env_data = std::getenv("VB_DATA_DIR");
-  const std::string data_dir = env_data != nullptr ? env_data : VB_SOURCE_DIR "/data";
+  const std::string data_dir = vb::io::DataDir();
   const std::vector<std::string> vehicles = vb::io::VehicleNames(data_dir);
   if (std::find(vehicles.begin(), vehicles.end(), o.vehicle) == vehicles.end()) {
     throw vb::InputError("", 0, "--vehicle", "unknown vehicle '" + o.vehicle + "' in " + data_dir +
@@ -215,6 +219,7 @@ int main(int argc, char** argv) {
   return vb::io::ToolMain("vb_run", [&] {
     const Options o = ParseArgs(argc, argv);
     if (o.help) return vb::io::PrintUsage(kUsage);
+    if (o.version) return vb::io::PrintVersion("vb_run");
     return Run(o);
   });
 }

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "io/cli_args.h"
+#include "io/data_dir.h"
 #include "io/result_io.h"
 #include "io/soil_io.h"
 #include "io/task_io.h"
@@ -42,6 +43,8 @@ options:
   --port P           port on 127.0.0.1 (default 8765; 0: any free port)
   --open             open the URL with xdg-open
   --task FILE        (replay) the trial's task file, instead of its recorded path
+  --tasks DIR        (replay, serve) the task set the trials ran on, to find their task files
+                     (default: share/vb/tasks next to this program's bin/, vb's shipped tasks)
   --vehicle NAME     (teleop) vehicle $VB_DATA_DIR/vehicles/NAME.yaml (required)
   --pair K           (teleop) start/goal pair (default 0)
   --seed S           (teleop) trial seed (default 0)
@@ -49,6 +52,7 @@ options:
   --out DIR          (teleop) where drives are recorded (default results/teleop)
   --exit-after N     (teleop) exit after N recorded drives (default: run until interrupted)
   --help             this text
+  --version          the version and git commit of this build
 
 The first line printed is "vb_view: serving http://127.0.0.1:PORT/..." once the server listens.
 exit codes: 0 stopped (Ctrl-C, SIGTERM, --exit-after), 1 internal error, 2 bad input.
@@ -60,6 +64,7 @@ struct Options {
   int port = 8765;
   bool open = false;
   std::string task_file;
+  std::string tasks_dir;
   std::string vehicle;
   int pair = 0;
   uint64_t seed = 0;
@@ -67,6 +72,7 @@ struct Options {
   std::string out_dir = "results/teleop";
   int exit_after = 0;
   bool help = false;
+  bool version = false;
 };
 
 Options ParseArgs(int argc, char** argv) {
@@ -76,12 +82,16 @@ Options ParseArgs(int argc, char** argv) {
     const std::string& a = args.arg();
     if (a == "--help" || a == "-h") {
       o.help = true;
+    } else if (a == "--version") {
+      o.version = true;
     } else if (a == "--port") {
       o.port = static_cast<int>(args.U64Value(0, 65535));
     } else if (a == "--open") {
       o.open = true;
     } else if (a == "--task") {
       o.task_file = args.Value();
+    } else if (a == "--tasks") {
+      o.tasks_dir = args.Value();
     } else if (a == "--vehicle") {
       o.vehicle = args.Value();
     } else if (a == "--pair") {
@@ -104,7 +114,7 @@ Options ParseArgs(int argc, char** argv) {
       throw vb::InputError("", 0, a, "unexpected argument (see --help)");
     }
   }
-  if (o.help) return o;
+  if (o.help || o.version) return o;
   if (o.mode.empty()) o.mode = "replay";
   if (o.input.empty()) {
     const char* what = o.mode == "replay" ? "RESULT.json" : o.mode == "serve" ? "DIR" : "TASK";
@@ -119,11 +129,6 @@ Options ParseArgs(int argc, char** argv) {
 vb::view::ViewServer* g_server = nullptr;
 extern "C" void OnSignal(int) {
   if (g_server != nullptr) g_server->Stop();
-}
-
-std::string EnvOr(const char* name, const std::string& fallback) {
-  const char* v = std::getenv(name);
-  return v != nullptr && *v != '\0' ? v : fallback;
 }
 
 // Percent-encodes a path for a query value (keeps '/', letters, digits and -._~).
@@ -161,12 +166,12 @@ int Serve(vb::view::ServerConfig& config, const Options& o) {
 }
 
 int Run(const Options& o) {
-  const std::string data_dir = EnvOr("VB_DATA_DIR", VB_SOURCE_DIR "/data");
+  const std::string data_dir = vb::io::DataDir();
   vb::view::ServerConfig config;
   config.port = o.port;
-  config.web_root = EnvOr("VB_WEB_DIR", VB_SOURCE_DIR "/web/viewer");
+  config.web_root = vb::io::WebDir();
   config.bundle.data_dir = data_dir;
-  config.bundle.tasks_dir = VB_SOURCE_DIR "/tasks";
+  config.bundle.tasks_dir = o.tasks_dir.empty() ? vb::io::TasksDir() : o.tasks_dir;
   config.bundle.task_file = o.task_file;
   vb::view::SceneCache cache;
   config.bundle.cache = &cache;
@@ -245,6 +250,7 @@ int main(int argc, char** argv) {
   return vb::io::ToolMain("vb_view", [&] {
     const Options o = ParseArgs(argc, argv);
     if (o.help) return vb::io::PrintUsage(kUsage);
+    if (o.version) return vb::io::PrintVersion("vb_view");
     return Run(o);
   });
 }

@@ -9,6 +9,7 @@
 #include "io/cli_args.h"
 #include "io/result_io.h"
 #include "io/task_io.h"
+#include "io/task_ref.h"
 #include "io/vehicle_io.h"
 #include "vb/engine/error.h"
 #include "vb/engine/runner/episode.h"
@@ -80,14 +81,12 @@ const SceneCache::Task& FindTask(const std::string& result_path, const batch::Tr
   if (!options.task_file.empty()) {
     candidates.push_back(options.task_file);
   } else {
-    if (!row.task_file.empty()) {
-      candidates.push_back(row.task_file);
-      if (fs::path(row.task_file).is_relative()) {
-        candidates.push_back((fs::path(result_path).parent_path() / row.task_file).string());
+    candidates = io::TaskFileCandidates(row.task_file, result_path, options.tasks_dir);
+    if (!options.tasks_dir.empty()) {   // by the task's name, when the file was named otherwise
+      const std::string by_name = (fs::path(options.tasks_dir) / (row.task + ".yaml")).string();
+      if (std::find(candidates.begin(), candidates.end(), by_name) == candidates.end()) {
+        candidates.push_back(by_name);
       }
-    }
-    if (!options.tasks_dir.empty()) {
-      candidates.push_back((fs::path(options.tasks_dir) / (row.task + ".yaml")).string());
     }
   }
   std::string mismatch;

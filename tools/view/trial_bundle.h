@@ -38,14 +38,16 @@ class SceneCache {
 
 struct BundleOptions {
   std::string data_dir;    // vehicles/<name>.yaml are read from here
-  std::string tasks_dir;   // last place a trial's task is looked for: <tasks_dir>/<task>.yaml
+  std::string tasks_dir;   // the task set the trials ran on (io::TaskFileCandidates); also
+                           // <tasks_dir>/<task>.yaml, last
   std::string task_file;   // if set, the trial's task (instead of looking it up)
   SceneCache* cache = nullptr;   // optional: reuse loaded tasks and vehicles between calls
 };
 
 // The bundle of the trial whose record is `result_path` (vb_run/vb_batch JSON; the trajectory
-// is the sibling <stem>_traj.csv). The task is the record's provenance.task_file (as given,
-// then relative to the record's directory), else <tasks_dir>/<task>.yaml, and must be the
+// is the sibling <stem>_traj.csv). The task is options.task_file if set, else the first of
+// io::TaskFileCandidates (provenance.task_file in tasks_dir, then beside the record and its
+// parent directories; never the current directory), else <tasks_dir>/<task>.yaml, that is the
 // world the trial ran on: same name and the same FNV-1a of task file + height image as the
 // record's provenance. Throws InputError naming the file and what is wrong: unreadable or
 // malformed record, no task file found, a task that does not match, an unknown vehicle.

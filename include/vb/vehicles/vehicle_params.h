@@ -38,7 +38,25 @@ struct ChassisParams {
 //    F = -k (L - L0) - c dL/dt (+ pushes the mounts apart), i.e. -F dL/ds on the slider.
 // Both: progressive bump and rebound stops (table of force vs deflection beyond the stop) engage
 // at s = +bump_travel_m and s = -rebound_travel_m.
-enum class SuspensionModel { kStrut, kDoubleWishbone };
+//  - kSingleWishbone, kAirWishbone, kSolidAxle: the slider carries a spring and a damper whose
+//    shock length is L = design_length - motion_ratio * s (constant motion ratio: the linkage's
+//    hard points are not in the reference). kSingleWishbone: linear coil-over (Gator front);
+//    kAirWishbone: a double wishbone whose spring is an air spring (FEDA; suspension_forces.h);
+//    kSolidAxle: a 3-link solid axle reduced to one slider per wheel with the axle's progressive
+//    spring and degressive damper at the wheel (MAN, Verti-Wheeler; the axle's roll is the two
+//    sliders' travel difference, its camber is not modelled). A solid axle may carry a bellcrank
+//    (the steering relay of a steered axle).
+//  - kRigid: no suspension (Gator rear): the carrier is held at s = 0 by an implicit position
+//    servo (a joint limit of zero travel leaks under load).
+enum class SuspensionModel {
+  kStrut, kDoubleWishbone, kSingleWishbone, kAirWishbone, kSolidAxle, kRigid
+};
+
+// Spring law along the shock (suspension_forces.h): linear F = k (L0 - L); progressive
+// F = k1 x + k2 x^2 with x = L0 - L (>= 0); air spring F = F0 (h / (h - x))^1.4 with x the
+// compression from the design length and h = 1.4 F0 / k (the gas column that has stiffness k at
+// design).
+enum class SpringLaw { kLinear, kProgressive, kAir };
 
 struct SuspensionParams {
   SuspensionModel model = SuspensionModel::kStrut;
@@ -49,8 +67,24 @@ struct SuspensionParams {
   double spring_stiffness_npm = 0.0;   // along the shock
   double spring_free_length_m = 0.0;
   DoubleWishboneHardpoints hardpoints; // left side, suspension frame (only differences matter)
-  // both
-  double damping_nspm = 0.0;        // kStrut: at the wheel; kDoubleWishbone: along the shock
+  // kSingleWishbone, kAirWishbone, kSolidAxle (shock along a constant motion ratio)
+  SpringLaw spring_law = SpringLaw::kLinear;
+  double motion_ratio = 1.0;           // shock travel per wheel travel
+  double spring_design_length_m = 0.0; // shock length at s = 0
+  double spring_k2_npm2 = 0.0;         // kProgressive quadratic term
+  double spring_preload_n = 0.0;       // kAir: F0 at the design length
+  // Degressive damper (kSolidAxle): F = c v / (1 + d |v|) per direction (compression, expansion);
+  // the other models use damping_nspm with zero degression.
+  double damping_expansion_nspm = 0.0;
+  double degression_compression_spm = 0.0;
+  double degression_expansion_spm = 0.0;
+  bool bellcrank = false;              // kSolidAxle: steering relay on a steered axle
+  double steering_arm_m = 0.0;         // kSingleWishbone: knuckle arm for rack_pinion steering
+  // Anti-roll bar (independent suspensions): force k (s_this - s_other) against the travel
+  // difference of the axle's two wheels, at the wheels. 0: none.
+  double anti_roll_bar_npm = 0.0;
+  // all
+  double damping_nspm = 0.0;        // kStrut: at the wheel; others: along the shock (compression)
   double bump_travel_m = 0.0;       // stop engagement (compression)
   double rebound_travel_m = 0.0;    // stop engagement (extension)
   std::vector<double> stop_deflection_m;  // ascending, first 0
@@ -115,16 +149,24 @@ struct AxleParams {
   bool driven = true;
   double brake_torque_nm = 0.0;     // max braking torque per wheel
   SuspensionParams suspension;
+  WheelParams wheel;                // the vehicle's wheel unless the axle gives its own (Gator)
 };
 
 // kAckermann: ideal geometry, the inner wheel gets max_angle_rad. kRackPinion: Chrono's
 // rack-pinion, rack travel = input * max_pinion_angle * pinion_radius, road-wheel angles from
-// the steered axles' double-wishbone tie-rod geometry (needs kDoubleWishbone suspension there).
-enum class SteeringModel { kAckermann, kRackPinion };
+// the steered axles' double-wishbone tie-rod geometry (kDoubleWishbone) or, on a single wishbone,
+// from its knuckle arm: angle = asin(rack / steering_arm_m) on both wheels (parallel steer).
+// kPitmanArm, kRotaryArm: an arm turning by input * max_angle_rad drives the road wheels through
+// drag link and tie rods; their hard points are not in the reference, so the linkage is taken as
+// ideal Ackermann with the inner wheel of the first steered axle at max_angle_rad *
+// wheel_per_arm, further steered axles on the same turning centre (steering_linkage.h). A pitman
+// arm steers independent suspensions, a rotary arm solid axles with a bellcrank.
+enum class SteeringModel { kAckermann, kRackPinion, kPitmanArm, kRotaryArm };
 
 struct SteeringParams {
   SteeringModel model = SteeringModel::kAckermann;
-  double max_angle_rad = 0.0;          // kAckermann
+  double max_angle_rad = 0.0;          // kAckermann; kPitmanArm, kRotaryArm: the arm's
+  double wheel_per_arm = 1.0;          // kPitmanArm, kRotaryArm: road-wheel / arm angle
   double max_pinion_angle_rad = 0.0;   // kRackPinion
   double pinion_radius_m = 0.0;        // kRackPinion
   // kRackPinion: the steering link (rack) moves only along y, so its mass is lumped into the
@@ -139,9 +181,14 @@ struct EngineMapPoint {
   double zero_throttle_nm = 0.0;
 };
 
+// The loader turns every engine model into a map (engine_models.h): `map` as given, a DC motor
+// (linear torque-speed line) and Chrono's simple engine (min(max torque, max power / w)).
 struct EngineParams {
   double max_speed_radps = 0.0;
   std::vector<EngineMapPoint> map;  // ascending speed; linear interpolation
+  // Rotor / flywheel inertia at engine speed (kg m^2), reflected onto the driven wheels through
+  // the first gear and the conical ratio (exact for single-gear drives). 0: none.
+  double rotor_inertia_kgm2 = 0.0;
 };
 
 struct TransmissionParams {
@@ -161,6 +208,9 @@ struct DrivelineParams {
   bool lock_axle_differentials = false;
   bool lock_central_differential = false;
   double lock_torque_limit_nm = 0.0;   // clutch torque of a "locked" differential
+  // Viscous coupling of that clutch below its limit (N m s/rad, powertrain.cc): 400 (the
+  // HMMWV's) unless the file says; small vehicles need one in proportion to their wheel inertia.
+  double lock_coupling_nms_per_rad = 400.0;
   // Rotating inertia of the shafts (Chrono's ChShaftsDriveline4WD): the driveshaft and the
   // central differential box, one propeller shaft per driven axle (these turn 1/conical_ratio
   // times faster than the wheels), and one differential box per driven axle (at wheel speed).
@@ -172,6 +222,9 @@ struct DrivelineParams {
 
 struct VehicleParams {
   std::string name;
+  // Largest physics step the vehicle is stable at (s); 0: any (the runner's 5 ms). The runner
+  // splits its step into equal sub-steps no longer than this (docs/vehicles.md).
+  double max_step_s = 0.0;
   ChassisParams chassis;
   std::vector<AxleParams> axles;       // front to rear; each axle has a left and a right wheel
   SteeringParams steering;

@@ -206,6 +206,9 @@ struct Episode::Impl {
   ObservationBuilder builder;
   int steps_per_period = 1;
   long max_steps = 1;
+  // Physics sub-steps per step: a vehicle whose file limits the step (max_step_s, the 1/10-scale
+  // Verti-Wheeler) runs the step as that many equal sub-steps with the inputs held.
+  int substeps = 1;
   long window_steps = 1;
   long contact_gap_steps = 1;
   double goal_radius_m = 10.0;
@@ -251,21 +254,24 @@ void Episode::Impl::PhysicsStep() {
   }
 
   vehicle->SetInputs(progress.inputs);
-  vehicle->Synchronize(dt);
-  lap(timings != nullptr ? &timings->vehicle_sync_s : nullptr);
-  if (soil) {
-    soil->EndStep(dt);
-    lap(timings != nullptr ? &timings->soil_s : nullptr);
+  const double h = substeps == 1 ? dt : dt / substeps;
+  for (int sub = 0; sub < substeps; ++sub) {
+    vehicle->Synchronize(h);
+    lap(timings != nullptr ? &timings->vehicle_sync_s : nullptr);
+    if (soil) {
+      soil->EndStep(h);
+      lap(timings != nullptr ? &timings->soil_s : nullptr);
+    }
+    if (timed_soil) {  // the wheels' soil contact ran inside Synchronize: move it to soil_s
+      const double contact_s = timed_soil->TakeSeconds();
+      timings->vehicle_sync_s -= contact_s;
+      timings->soil_s += contact_s;
+    }
+    world->Step(h);
+    lap(timings != nullptr ? &timings->physics_step_s : nullptr);
+    vehicle->UpdateState();
+    lap(timings != nullptr ? &timings->vehicle_update_s : nullptr);
   }
-  if (timed_soil) {  // the wheels' soil contact ran inside Synchronize: move it to soil_s
-    const double contact_s = timed_soil->TakeSeconds();
-    timings->vehicle_sync_s -= contact_s;
-    timings->soil_s += contact_s;
-  }
-  world->Step(dt);
-  lap(timings != nullptr ? &timings->physics_step_s : nullptr);
-  vehicle->UpdateState();
-  lap(timings != nullptr ? &timings->vehicle_update_s : nullptr);
   ++progress.k;
   const double t = Time();
   const vehicles::VehicleState& s = vehicle->state();
@@ -447,6 +453,9 @@ void Episode::Reset(const TrialSpec& spec) {
                m.rules.start_height_m);
   start_pose.rotation = FromYaw(yaw0);
   m.vehicle = std::make_unique<vehicles::Vehicle>(vp, m.ground, start_pose, m.world.get());
+  if (vp.max_step_s > 0.0 && vp.max_step_s < m.rules.step_s) {
+    m.substeps = static_cast<int>(std::ceil(m.rules.step_s / vp.max_step_s - 1e-9));
+  }
   m.vehicle->SetObstacles(&m.obstacles);
   // Deformable patches: one SCM grid over the whole world (it only stores what wheels touch);
   // wheels over rigid patches keep the vehicle's rigid tire, rocks stay rigid bodies.
