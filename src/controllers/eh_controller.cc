@@ -97,10 +97,8 @@ Command EhController::Update(const Observation& obs) {
   last_ = Decide(obs.position_W.head<2>(), obs.rpy.yaw_rad);
   const double error = params_.terrain_weight * last_.terrain_error_rad +
                        params_.path_weight * obs.heading_error_rad;
-  const double max_change = params_.steering_rate_per_s * context_.control_period_s;
-  steering_ = std::clamp(params_.steering_kp * error, steering_ - max_change,
-                         steering_ + max_change);
-  steering_ = std::clamp(steering_, -1.0, 1.0);
+  steering_ = RateLimitedSteering(params_.steering_kp * error, steering_,
+                                  params_.steering_rate_per_s * context_.control_period_s);
   Command command;
   command.steering = steering_;
   SpeedControl(params_.target_speed_mps, obs.forward_speed_mps, params_.speed_kp, &command);

@@ -8,6 +8,10 @@
 
 namespace vb::controllers {
 
+double RateLimitedSteering(double target, double previous, double max_change) {
+  return std::clamp(std::clamp(target, previous - max_change, previous + max_change), -1.0, 1.0);
+}
+
 void SpeedControl(double target_mps, double speed_mps, double kp, Command* command) {
   const double out = std::clamp(kp * (target_mps - speed_mps), -1.0, 1.0);
   if (out > 0.0) {
@@ -36,10 +40,8 @@ void PidController::Reset(const EpisodeContext& context) {
 Command PidController::Update(const Observation& obs) {
   // Steering: proportional to the heading error to the look-ahead point, rate limited per call,
   // then clamped to the command range.
-  const double max_change = params_.steering_rate_per_s * context_.control_period_s;
-  steering_ = std::clamp(params_.steering_kp * obs.heading_error_rad, steering_ - max_change,
-                         steering_ + max_change);
-  steering_ = std::clamp(steering_, -1.0, 1.0);
+  steering_ = RateLimitedSteering(params_.steering_kp * obs.heading_error_rad, steering_,
+                                  params_.steering_rate_per_s * context_.control_period_s);
   Command command;
   command.steering = steering_;
   SpeedControl(params_.target_speed_mps, obs.forward_speed_mps, params_.speed_kp, &command);

@@ -80,6 +80,7 @@ struct ScmSoil::Impl {
   std::vector<int32_t> tile_index;           // tiles_x * tiles_y, -1: not allocated
   std::vector<std::unique_ptr<Tile>> tiles;  // in allocation order
   std::array<SoilParams, 3> soils;
+  std::array<double, 3> tan_friction{};  // tan of each soil's friction angle (per node otherwise)
   int32_t step = 0;
   ScmStats stats;
   double max_raise_m = 0.0;   // highest level0 - base of any node so far (scan bound)
@@ -183,6 +184,7 @@ ScmSoil::ScmSoil(const terrain::Terrain& terrain, const SoilConfig& config)
       // As Chrono: the elastic stiffness is never below the frictional modulus.
       m.soils[k].elastic_stiffness_papm =
           std::max(m.soils[k].elastic_stiffness_papm, m.soils[k].bekker_kphi);
+      m.tan_friction[k] = std::tan(m.soils[k].friction_angle_rad);
     }
   }
   m.dx = config_.grid_spacing_m;
@@ -329,7 +331,8 @@ WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
     Vec3 f = sigma * area * nw + sigma_damp * cell * h.cover * under.normal_W;
     if (j_len > 0.0) {
       // Mohr-Coulomb on the total normal stress, damping included (Chrono's order, §2.3).
-      const double tau_max = s.cohesion_pa + (sigma + sigma_damp) * std::tan(s.friction_angle_rad);
+      const double tan_phi = m.tan_friction[static_cast<size_t>(n.slot)];
+      const double tau_max = s.cohesion_pa + (sigma + sigma_damp) * tan_phi;
       const double tau = tau_max * (1.0 - std::exp(-j_len / s.janosi_shear_m));
       f -= (tau * area / j_len) * n.shear_m;
     }
@@ -463,9 +466,13 @@ void ScmSoil::Impl::Erode(const BulldozingParams& bp) {
       if (n->slot < 0 || n->contact_step == step) continue;
       for (int e = 0; e < 4; ++e) {
         const int ni = w.i + di[e], nj = w.j + dj[e];
-        const double dy = Level(*n) - LevelAt(ni, nj);
+        // one tile look-up for the neighbour's level and, if it moves, the node itself (its
+        // tile is allocated only then: most neighbours are within the threshold)
+        Node* nb = At(ni, nj, false);
+        const double dy =
+            Level(*n) - (nb != nullptr ? Level(*nb) : terrain.Height(ni * dx, nj * dx));
         if (std::abs(dy) <= threshold) continue;
-        Node* nb = At(ni, nj, true);
+        if (nb == nullptr) nb = At(ni, nj, true);
         if (nb == nullptr || nb->slot < 0 || nb->contact_step == step) continue;
         const double q = 0.5 * (std::abs(dy) - threshold) / 4.0;
         const double moved = dy > 0.0 ? q : -q;  // from the higher node to the lower one

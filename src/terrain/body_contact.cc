@@ -56,6 +56,37 @@ double MaxGroundHeightUnder(const Vec3& lo, const Vec3& hi, const Terrain& groun
   return max_h;
 }
 
+bool GroundBeyondLowestFace(const engine::ConvexShape& body, const Terrain& ground) {
+  // Why it is exact: every point p of the piece satisfies n.p <= offset for the lowest face
+  // (n.z < 0). A ground point g inside the piece, or above one of its samples (g = p + t z,
+  // t > 0), has n.g <= offset too. The ground over the footprint is made of triangles whose
+  // vertices are the grid vertices below (cells covering the footprint), and n.g - offset is
+  // linear on each triangle: if it is positive at every vertex it is positive everywhere.
+  const engine::ConvexShape::Face* lowest = nullptr;
+  for (const engine::ConvexShape::Face& f : body.faces)
+    if (lowest == nullptr || f.normal.z() < lowest->normal.z()) lowest = &f;
+  constexpr double kMinDownward = 0.05;  // |n.z| of a face still usable as a bottom
+  if (lowest == nullptr || lowest->normal.z() > -kMinDownward) return false;
+  const HeightGrid& g = ground.grid();
+  const double west = -0.5 * ground.size_x_m(), north = 0.5 * ground.size_y_m();
+  const double dx = ground.spacing_x_m(), dy = ground.spacing_y_m();
+  const double c0 = std::floor((body.aabb_min.x() - west) / dx);
+  const double c1 = std::ceil((body.aabb_max.x() - west) / dx);
+  const double r0 = std::floor((north - body.aabb_max.y()) / dy);
+  const double r1 = std::ceil((north - body.aabb_min.y()) / dy);
+  // outside the grid the surface is clamped, not spanned by these vertices
+  if (c0 < 0.0 || r0 < 0.0 || c1 > g.cols - 1 || r1 > g.rows - 1) return false;
+  constexpr double kMargin = 1e-9;  // m: well above the rounding of posed vertices and samples
+  const Vec3& n = lowest->normal;
+  for (int r = static_cast<int>(r0); r <= static_cast<int>(r1); ++r) {
+    for (int c = static_cast<int>(c0); c <= static_cast<int>(c1); ++c) {
+      const double s = n.x() * (west + c * dx) + n.y() * (north - r * dy) + n.z() * g.At(r, c);
+      if (s - lowest->offset <= kMargin) return false;
+    }
+  }
+  return true;
+}
+
 void GroundContacts(const engine::ConvexShape& body, const Terrain& ground, double body_friction,
                     int max_contacts, ContactScratch* scratch, std::vector<BodyContact>* out) {
   std::vector<BodyContact>& cand = scratch->candidates;

@@ -457,7 +457,8 @@ void Vehicle::AddBodyContacts() {
   for (size_t k = 0; k < b.for_ground_B.size(); ++k) {
     b.for_ground_B[k].TransformInto(reference, &b.posed, /*with_samples=*/false);
     if (b.posed.aabb_min.z() <=
-        terrain::MaxGroundHeightUnder(b.posed.aabb_min, b.posed.aabb_max, terrain_)) {
+            terrain::MaxGroundHeightUnder(b.posed.aabb_min, b.posed.aabb_max, terrain_) &&
+        !terrain::GroundBeyondLowestFace(b.posed, terrain_)) {
       b.for_ground_B[k].TransformSamplesInto(reference, &b.posed);
       terrain::GroundContacts(b.posed, terrain_, kBodyFriction, kMaxGroundContactsPerPiece,
                               &b.scratch, &b.contacts);

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 
 #include "support/worlds.h"
 #include "vb/engine/convex_shape.h"
@@ -169,6 +170,62 @@ TEST(BodyContactTest, ReductionKeepsTheDeepestAndSpreadsTheRest) {
   EXPECT_EQ(out[0].point_W.x(), 1.0);  // deepest
   EXPECT_EQ(out[1].point_W.x(), 2.1);  // then the farthest from it
   EXPECT_EQ(out[2].point_W.x(), 0.0);  // then the farthest from both
+}
+
+// The quick reject used before GroundContacts (GroundBeyondLowestFace) must never hide a contact:
+// over a rough ground (random vertex heights) and random tilted box poses near it, whenever it
+// says "beyond", GroundContacts finds nothing; and it does pass the common case of a box tilted
+// with the slope under it, which the AABB test (MaxGroundHeightUnder) cannot.
+TEST(BodyContactTest, LowestFaceRejectNeverHidesAContact) {
+  TaskSpec task = test::PlaneTask(32.0);
+  std::uint64_t state = 12345;
+  auto uniform = [&state]() {  // deterministic LCG in [0, 1)
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return static_cast<double>(state >> 11) / 9007199254740992.0;
+  };
+  for (double& h : task.heights.heights_m) h = 0.6 * uniform();
+  const Terrain ground(task);
+  ContactScratch scratch;
+  std::vector<BodyContact> out;
+  int rejected = 0, touching = 0;
+  for (int k = 0; k < 4000; ++k) {
+    const Vec3 centre(-8.0 + 16.0 * uniform(), -8.0 + 16.0 * uniform(), 0.2 + 1.2 * uniform());
+    const Quat q = Quat(Eigen::AngleAxisd(0.6 * (uniform() - 0.5), Vec3::UnitX())) *
+                   Quat(Eigen::AngleAxisd(0.6 * (uniform() - 0.5), Vec3::UnitY())) *
+                   Quat(Eigen::AngleAxisd(6.3 * uniform(), Vec3::UnitZ()));
+    const engine::ConvexShape local = Box(Vec3::Zero(), Vec3(1.2, 0.6, 0.2));
+    Pose pose;
+    pose.position = centre;
+    pose.rotation = q;
+    const engine::ConvexShape box = local.Transformed(pose);
+    out.clear();
+    GroundContacts(box, ground, 0.8, 64, &scratch, &out);
+    if (!out.empty()) ++touching;
+    if (GroundBeyondLowestFace(box, ground)) {
+      ++rejected;
+      EXPECT_TRUE(out.empty()) << "pose " << k;
+    }
+  }
+  EXPECT_GT(touching, 400);   // the poses do exercise contacts
+  EXPECT_GT(rejected, 500);   // and the reject does fire
+  // a box tilted 20 deg with a 20 deg slope, 5 cm above it: the AABB test cannot reject it
+  const TaskSpec slope = test::PlaneTask(32.0, std::tan(20.0 * M_PI / 180.0));
+  const Terrain sloped(slope);
+  Pose tilted;
+  tilted.rotation = Quat(Eigen::AngleAxisd(-20.0 * M_PI / 180.0, Vec3::UnitY()));
+  tilted.position = Vec3(0.0, 0.0, 0.25 / std::cos(20.0 * M_PI / 180.0));  // bottom 5 cm up
+  const engine::ConvexShape on_slope = Box(Vec3::Zero(), Vec3(1.2, 0.6, 0.2)).Transformed(tilted);
+  EXPECT_LT(on_slope.aabb_min.z(),
+            MaxGroundHeightUnder(on_slope.aabb_min, on_slope.aabb_max, sloped));
+  EXPECT_TRUE(GroundBeyondLowestFace(on_slope, sloped));
+  out.clear();
+  GroundContacts(on_slope, sloped, 0.8, 64, &scratch, &out);
+  EXPECT_TRUE(out.empty());
+  // off the grid: no claim
+  Pose off;
+  off.position = Vec3(15.5, 0.0, 2.0);
+  EXPECT_FALSE(GroundBeyondLowestFace(Box(Vec3::Zero(), Vec3(1.2, 0.6, 0.2)).Transformed(off),
+                                      ground));
 }
 
 }  // namespace

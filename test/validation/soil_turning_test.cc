@@ -245,14 +245,16 @@ TEST(SoilTurningValidation, SandAndMudTurnLikeRigidGround) {
 // (issue 11; before, a front-arc drag of ~1 kN per wheel kept the drive slip at 0.3-0.5 and the
 // wheels spun at 3 m/s, R > 4 x rigid). Asserted: at 1, 2 and 3 m/s, steering 0.5 and full lock,
 // R within 10 % of rigid, growing with speed at full lock; at 2 m/s the soil force towards the
-// centre equals m v^2 / R within 5 %.
+// centre equals m v^2 / R within 5 %. The averages are taken over the last 6 s of 16 s: over a
+// 2-s window the balance moved by +-5 % with rounding-level changes elsewhere (issue 24's
+// physics-adapter changes), while over 6 s it is stable (1 and 3 m/s balance within 1 %).
 TEST(SoilTurningValidation, SnowTurnsNearlyLikeRigidGround) {
   for (double steering : {0.5, 1.0}) {
     const Circle rigid = SteadyTurn(SurfaceClass::kConcrete, steering, 1.0, 12.0, 2.0);
     Print("rigid 1 m/s", SurfaceClass::kConcrete, steering, rigid);
     double previous = 0.0;
     for (double speed : {1.0, 2.0, 3.0}) {
-      const Circle c = SteadyTurn(SurfaceClass::kSnow, steering, speed, 12.0, 2.0);
+      const Circle c = SteadyTurn(SurfaceClass::kSnow, steering, speed, 16.0, 6.0);
       char label[32];
       std::snprintf(label, sizeof(label), "%.0f m/s", speed);
       Print(label, SurfaceClass::kSnow, steering, c);

@@ -24,6 +24,10 @@ struct PidParams {
 // negative as brake. Writes throttle and braking of *command.
 void SpeedControl(double target_mps, double speed_mps, double kp, Command* command);
 
+// The steering shared by the path followers: `target` moved towards by at most `max_change`
+// from `previous` (the rate limit per control call), then clamped to the command range [-1, 1].
+double RateLimitedSteering(double target, double previous, double max_change);
+
 class PidController : public Controller {
  public:
   explicit PidController(const PidParams& params = PidParams());

@@ -48,6 +48,14 @@ struct ContactScratch {
 // surface at its centre): a body entirely above it cannot touch the ground.
 double MaxGroundHeightUnder(const Vec3& lo, const Vec3& hi, const Terrain& ground);
 
+// True when, over the footprint of `body_W` (a convex piece posed in the world), every ground
+// vertex lies beyond the plane of the piece's lowest face (by a rounding margin): the triangulated
+// ground is then entirely outside the piece and GroundContacts would find nothing. Much tighter
+// than MaxGroundHeightUnder for a body tilted with the slope under it (the common case on rough
+// worlds); conservative: false whenever unsure (a lowest face not facing down, a footprint that
+// leaves the grid).
+bool GroundBeyondLowestFace(const engine::ConvexShape& body_W, const Terrain& ground);
+
 // Appends to *out at most max_contacts contacts of `body_W` (a convex piece posed in the world)
 // with the ground; body_friction combines with the patch's by the minimum.
 void GroundContacts(const engine::ConvexShape& body_W, const Terrain& ground, double body_friction,
