@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include "vb/engine/error.h"
 
@@ -467,14 +468,55 @@ TrackSoilOutput ScmSoil::TrackContact(const TrackSoilInput& tr, double dt) {
     // The last segment owns its end point; every other segment stops just before it, so a node
     // belongs to one segment only.
     const double t_end = k + 2 == n ? 1.0 : 1.0 - 1e-12;
+    // Scan only the segment's footprint: per grid row, the x interval where the node is within
+    // the belt's half width (+ dx/2) across and within the part of the segment that can reach
+    // below the soil top (the sprocket and idler segments rise out of the soil).
+    const double sx = b.x() - a.x(), sy = b.y() - a.y();
+    const double len2 = sx * sx + sy * sy;
+    if (len2 < 1e-12) continue;
+    const double inv_len = 1.0 / std::sqrt(len2);
+    double lx = -sy * inv_len, ly = sx * inv_len;
+    if (lx * lat.x() + ly * lat.y() < 0.0) {
+      lx = -lx;
+      ly = -ly;
+    }
+    const double lat_h = std::sqrt(std::max(1e-6, 1.0 - lat.z() * lat.z()));
+    const double top = soil_top + (half_w + m.dx) * std::abs(lat.z()) / lat_h;
+    double t_lo = 0.0, t_hi = t_end;
+    const double dz = b.z() - a.z();
+    if (dz > 1e-12) t_hi = std::min(t_hi, (top - a.z()) / dz);
+    if (dz < -1e-12) t_lo = std::max(t_lo, (top - a.z()) / dz);
+    if (t_lo > t_hi) continue;
+    const double hw_scan = half_w + 0.5 * m.dx;
+    // x - a.x within [lo, hi] where c0 + c1 (x - a.x) lies in [v_lo, v_hi]
+    auto clip = [](double c0, double c1, double v_lo, double v_hi, double* lo, double* hi) {
+      if (std::abs(c1) < 1e-12) {
+        if (c0 < v_lo || c0 > v_hi) *lo = 1.0, *hi = -1.0;
+        return;
+      }
+      double x0 = (v_lo - c0) / c1, x1 = (v_hi - c0) / c1;
+      if (x0 > x1) std::swap(x0, x1);
+      *lo = std::max(*lo, x0);
+      *hi = std::min(*hi, x1);
+    };
     m.hits.clear();
     for (int j = j_lo; j <= j_hi; ++j) {
-      for (int i = i_lo; i <= i_hi; ++i) {
-        double hit_z = 0.0, t = 0.0, l = 0.0;
-        if (!BeltBottomAt(a, b, lat, half_w + 0.5 * m.dx, i * m.dx, j * m.dx, &hit_z, &t, &l)) {
-          continue;
-        }
-        if (t < 0.0 || t > t_end) continue;
+      const double uy = j * m.dx - a.y();
+      double lo = -1e300, hi = 1e300;
+      clip(uy * sy / len2, sx / len2, t_lo, t_hi, &lo, &hi);
+      clip(uy * ly, lx, -hw_scan, hw_scan, &lo, &hi);
+      if (lo > hi) continue;
+      const int i0 = std::max(i_lo, static_cast<int>(std::ceil((a.x() + lo) / m.dx - 1e-9)));
+      const int i1 = std::min(i_hi, static_cast<int>(std::floor((a.x() + hi) / m.dx + 1e-9)));
+      // BeltBottomAt inlined along the row (t, l and the height are linear in x)
+      const double t_row = uy * sy / len2, l_row = uy * ly;
+      const double tilt = lat.z() / lat_h;
+      for (int i = i0; i <= i1; ++i) {
+        const double ux = i * m.dx - a.x();
+        const double t = t_row + ux * sx / len2;
+        const double l = l_row + ux * lx;
+        if (std::abs(l) > hw_scan || t < 0.0 || t > t_end) continue;
+        const double hit_z = a.z() + t * dz + l * tilt;
         const double cover = std::min(1.0, (half_w - std::abs(l)) / m.dx + 0.5);
         if (!(cover > 0.0)) continue;
         Node* node = m.At(i, j, true);

@@ -252,6 +252,7 @@ void TrackRunningGear::SynchronizeSide(int s, const DriverInputs& inputs,
                                                   : Vec3(seg_fwd[i - 1] + seg_fwd[i]);
     run_[i].tangent_W = t.normalized();
     run_[i].force_W.setZero();
+    run_[i].along_W.setZero();
   }
   const double omega = world_->JointVelocity(body_, side.sprocket_link);
   const double belt_speed = omega * tp_.sprocket_radius_m;  // the ground run moves back at this
@@ -263,6 +264,7 @@ void TrackRunningGear::SynchronizeSide(int s, const DriverInputs& inputs,
   // The contact acts on the light arms first: the stiff and damping terms are made implicit
   // (and the soil's stiffness capped) on the unsprung mass along the run, not on the chassis.
   const double side_mass = n_rw_ * (tp_.arm_mass_kg + tp_.road_wheel_mass_kg);
+  double belt_force = 0.0;   // ground force along the belt, carried to the sprocket
   if (soil != nullptr) {
     soil::TrackSoilInput in;
     in.track_id = s;
@@ -276,7 +278,13 @@ void TrackRunningGear::SynchronizeSide(int s, const DriverInputs& inputs,
     in.mass_kg = side_mass;
     const soil::TrackSoilOutput out = soil->TrackContact(in, dt);
     for (int i = 0; i < n_pts; ++i) {
-      run_[i].force_W += out.point_force_W[i];
+      // the soil's pressure acts along the belt's normal, its shear in the belt's plane: the
+      // shear's component along the belt is what the belt carries
+      const Vec3& f = out.point_force_W[i];
+      const double along = f.dot(run_[i].tangent_W);
+      belt_force += along;
+      run_[i].along_W += along * run_[i].tangent_W;
+      run_[i].force_W += f - along * run_[i].tangent_W;
       sinkage[i] = out.point_sinkage_m[i];
     }
     for (int k = 0; k + 1 < n_pts; ++k) {
@@ -331,21 +339,25 @@ void TrackRunningGear::SynchronizeSide(int s, const DriverInputs& inputs,
         ft *= limit / ft_norm;
         z = -ft / k_b;   // the bristle slides at the Coulomb limit
       }
-      const Vec3 f = fn * n + ft;
-      run_[k].force_W += (1.0 - t) * f;
-      run_[k + 1].force_W += t * f;
+      // friction along the belt is carried by the belt to the sprocket; the pressure (along the
+      // ground normal) and the side friction go to the structure under the point
+      const double along = ft.dot(seg_fwd[k]);
+      belt_force += along;
+      const Vec3 along_W = along * seg_fwd[k];
+      const Vec3 rest = fn * n + ft - along_W;
+      run_[k].force_W += (1.0 - t) * rest;
+      run_[k + 1].force_W += t * rest;
+      run_[k].along_W += (1.0 - t) * along_W;
+      run_[k + 1].along_W += t * along_W;
     }
   }
 
   // Apply: along the belt to the chassis and against the sprocket, the rest to the body under
   // the point.
-  double belt_force = 0.0;
   for (int i = 0; i < n_pts; ++i) {
     const RunPoint& rp = run_[i];
-    const double along = rp.force_W.dot(rp.tangent_W);
-    belt_force += along;
-    const Vec3 rest = rp.force_W - along * rp.tangent_W;
-    world_->ApplyBaseForce(body_, along * rp.tangent_W, rp.p_W);
+    const Vec3& rest = rp.force_W;
+    world_->ApplyBaseForce(body_, rp.along_W, rp.p_W);
     if (i == 0 || i == idler) {   // sprocket and idler: on the chassis
       world_->ApplyBaseForce(body_, rest, rp.p_W);
     } else {

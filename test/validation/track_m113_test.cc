@@ -100,8 +100,7 @@ TEST(TrackM113, StaticGroundPressureAndDistribution) {
 // Top speed: the speed where the engine's full-load torque through 4th gear meets the (small)
 // resistance, i.e. near the map's zero crossing w0: v = w0 * gear_4 * conical * r_sprocket.
 // Launched at 90 % of it (body and sprockets given that speed) so the run stays short; the top
-// speed is the plateau after 40 s at full throttle. The contact's damping losses act as a ~2 %
-// rolling resistance, so the sim settles a few per cent below w0 (tolerance 5 %).
+// speed is the plateau after 40 s at full throttle (tolerance 2 %).
 TEST(TrackM113, TopSpeedFromEngineAndGearing) {
   const vehicles::VehicleParams p = M113();
   double w0 = p.engine.max_speed_radps;
@@ -134,7 +133,48 @@ TEST(TrackM113, TopSpeedFromEngineAndGearing) {
   std::printf("top speed %.2f m/s (closed form %.2f m/s, %+.1f %%), gear %d, engine %.1f rad/s\n",
               v, closed, 100.0 * (v / closed - 1.0), sim.state().gear,
               sim.state().engine_speed_radps);
-  EXPECT_NEAR(v, closed, 0.05 * closed);
+  EXPECT_NEAR(v, closed, 0.02 * closed);
+}
+
+// Snapshot and restore continue bit for bit (the belt's bristles, the idler travel and the
+// powertrain are part of the vehicle's state).
+TEST(TrackM113, SnapshotRestoreIsBitIdentical) {
+  const vehicles::VehicleParams p = M113();
+  test::VehicleSim sim(test::PlaneTask(128.0, 0.0, 0.02, 0.7), p, FlatPose(p, -20.0, 0.3));
+  vehicles::DriverInputs in;
+  in.throttle = 1.0;
+  in.steering = 0.1;
+  sim.Run(2.0, in);
+  const vehicles::VehicleSnapshot snap = sim.vehicle->Snapshot();
+  sim.Run(1.5, in);
+  const vehicles::VehicleState first = sim.state();
+  sim.vehicle->Restore(snap);
+  sim.Run(1.5, in);
+  const vehicles::VehicleState& second = sim.state();
+  EXPECT_EQ(first.pose_W.position.x(), second.pose_W.position.x());
+  EXPECT_EQ(first.pose_W.position.y(), second.pose_W.position.y());
+  EXPECT_EQ(first.pose_W.rotation.w(), second.pose_W.rotation.w());
+  EXPECT_EQ(first.engine_speed_radps, second.engine_speed_radps);
+  for (size_t i = 0; i < first.wheels.size(); ++i) {
+    EXPECT_EQ(first.wheels[i].normal_force_n, second.wheels[i].normal_force_n) << i;
+  }
+  EXPECT_GT(first.pose_W.position.x(), -19.0);  // it drove
+}
+
+// Dropped from the runner's start height (0.5 m), braked, it lands and settles without diverging
+// (the torsion-bar suspension is lightly damped, as Chrono's: it bounces ~0.2 m and rocks ~7 deg
+// in pitch for ~3 s).
+TEST(TrackM113, LandsFromTheStartHeight) {
+  const vehicles::VehicleParams p = M113();
+  test::VehicleSim sim(test::PlaneTask(64.0, 0.0, 0.0, 0.8), p, FlatPose(p, 0.0, 0.5));
+  vehicles::DriverInputs in;
+  in.braking = 1.0;
+  sim.Run(6.0, in);
+  std::printf("after 6 s: speed %.4f m/s, pitch %.4f rad, roll %.4f rad\n",
+              sim.state().velocity_W.norm(), sim.state().rpy.pitch_rad, sim.state().rpy.roll_rad);
+  EXPECT_LT(sim.state().velocity_W.norm(), 0.05);
+  EXPECT_LT(std::abs(sim.state().rpy.roll_rad), 0.01);
+  EXPECT_LT(std::abs(sim.state().rpy.pitch_rad), 0.02);
 }
 
 bool Climbs(const vehicles::VehicleParams& p, double angle_rad, double mu) {
@@ -177,44 +217,61 @@ double RollingResistance(const vehicles::VehicleParams& p) {
 }
 
 // Gradeability from rest (>= 5 m uphill within 8 s at full throttle), by bisection. Closed forms
-// with the measured rolling resistance f: engine-limited sin(t) + f cos(t) = F0 / W, F0 the
-// first-gear thrust at launch (the map at 0 rpm: there is no torque converter); friction-limited
-// tan(t) = mu - f (the friction bound atan(mu) is never exceeded).
+// with the measured rolling resistance f and the acceleration the criterion needs from rest,
+// a = 2 * 5 m / (8 s)^2: engine-limited F0 = W (sin t + f cos t) + m_eff a, F0 the first-gear
+// thrust at launch (the map at 0 rpm: there is no torque converter), m_eff the mass plus the
+// sprockets' spin inertia (belt, road wheels, idler, shafts) / r^2; friction-limited
+// mu W cos t = W (sin t + f cos t) + m a (the friction bound atan(mu) is never exceeded).
 TEST(TrackM113, GradeabilityOnRigidGround) {
   const vehicles::VehicleParams p = M113();
-  const double w = TotalMass(p) * kGravity;
+  const vehicles::TrackParams& tp = p.tracks;
+  const double m = TotalMass(p), w = m * kGravity;
   const double f = RollingResistance(p);
+  const double r = tp.sprocket_radius_m;
+  const double spin = tp.sprocket_inertia_kgm2 + tp.belt_mass_kg * r * r +
+                      tp.road_wheel_x_m.size() * tp.road_wheel_inertia_kgm2 *
+                          std::pow(r / tp.road_wheel_radius_m, 2) +
+                      tp.idler_inertia_kgm2 * std::pow(r / tp.idler_radius_m, 2) +
+                      vehicles::DrivelineInertiaPerDrivenWheel(p.driveline, 1);
+  const double m_eff = m + 2.0 * spin / (r * r);
+  const double a = 2.0 * 5.0 / 64.0;
   const double launch_nm = p.engine.map.front().full_throttle_nm;
-  const double thrust = launch_nm /
-                        (p.transmission.forward_ratios.front() * p.driveline.conical_ratio) /
-                        p.tracks.sprocket_radius_m;
-  auto solve = [](double a, double f_r) {  // sin t + f cos t = a
+  const double thrust =
+      launch_nm / (p.transmission.forward_ratios.front() * p.driveline.conical_ratio) / r;
+  auto solve = [](auto residual) {  // residual decreasing in t on [0, pi/4]
     double lo = 0.0, hi = kPi / 4;
     for (int i = 0; i < 60; ++i) {
       const double t = 0.5 * (lo + hi);
-      (std::sin(t) + f_r * std::cos(t) < a ? lo : hi) = t;
+      (residual(t) > 0.0 ? lo : hi) = t;
     }
     return lo;
   };
-  const double engine_limit = solve(thrust / w, f) / kDeg;
+  const double engine_limit =
+      solve([&](double t) { return thrust - w * (std::sin(t) + f * std::cos(t)) - m_eff * a; }) /
+      kDeg;
   const double sim_engine = SteepestClimbed(p, 0.9, 2.0, 20.0);
   constexpr double kLowMu = 0.12;
-  const double friction_limit = std::atan(kLowMu - f) / kDeg;
+  const double friction_limit =
+      solve([&](double t) {
+        return kLowMu * w * std::cos(t) - w * (std::sin(t) + f * std::cos(t)) - m * a;
+      }) /
+      kDeg;
   const double sim_friction = SteepestClimbed(p, kLowMu, 1.0, 12.0);
-  std::printf("rolling resistance f = %.4f\nmu 0.9: climbs %.2f deg, engine limit (launch thrust "
-              "%.0f N, W %.0f N) %.2f deg (without f: %.2f deg; atan 0.9 = %.1f deg)\n"
-              "mu %.2f: climbs %.2f deg, atan(mu - f) = %.2f deg, atan(mu) = %.2f deg\n",
-              f, sim_engine, thrust, w, engine_limit, std::asin(thrust / w) / kDeg,
+  std::printf("rolling resistance f = %.4f, m_eff %.0f kg\nmu 0.9: climbs %.2f deg, engine "
+              "limit (launch thrust %.0f N, W %.0f N) %.2f deg (steady asin(F0 / W): %.2f deg; "
+              "atan 0.9 = %.1f deg)\nmu %.2f: climbs %.2f deg, friction limit %.2f deg, "
+              "atan(mu) = %.2f deg\n",
+              f, m_eff, sim_engine, thrust, w, engine_limit, std::asin(thrust / w) / kDeg,
               std::atan(0.9) / kDeg, kLowMu, sim_friction, friction_limit,
               std::atan(kLowMu) / kDeg);
-  EXPECT_NEAR(sim_engine, engine_limit, 0.75);
-  EXPECT_NEAR(sim_friction, friction_limit, 0.75);
+  EXPECT_NEAR(sim_engine, engine_limit, 0.5);
+  EXPECT_NEAR(sim_friction, friction_limit, 0.5);
   EXPECT_LE(sim_friction, std::atan(kLowMu) / kDeg);
 }
 
 // Steady skid-steer turn: full left steering brakes the left sprocket; on flat ground of
 // friction mu the tracks slide sideways and the turning resistance moment is the classic
-// M_r = mu W l / 4 (uniform pressure, Wong ch. 7), balanced by the track thrusts:
+// M_r = mu W l / 4 (uniform pressure, pure lateral sliding, Wong ch. 7), balanced by the track thrusts:
 // (F_outer - F_inner) B / 2 = M_r, B the gauge. Averaged over the last 4 s of 12 s.
 TEST(TrackM113, SkidSteerMomentBalance) {
   const vehicles::VehicleParams p = M113();
@@ -251,7 +308,10 @@ TEST(TrackM113, SkidSteerMomentBalance) {
               kMu, f_out, f_in, sim_moment, m_r, 100.0 * (sim_moment / m_r - 1.0), yaw_rate,
               speed, radius, gauge / 2.0);
   EXPECT_GT(yaw_rate, 0.05);   // turns left
-  EXPECT_NEAR(sim_moment, m_r, 0.15 * m_r);
+  // the classic moment assumes purely lateral sliding; the tracks also slip along their length
+  // (the outer one drives, the braked inner one is dragged), which tilts the friction away
+  // from the lateral direction and lowers the moment: -15 % here
+  EXPECT_NEAR(sim_moment, m_r, 0.2 * m_r);
 }
 
 struct SoilRig {

@@ -83,7 +83,8 @@ class TrackRunningGear {
   // Ground-run points of one side: 0 sprocket, 1..n road wheels, n + 1 idler.
   struct RunPoint {
     Vec3 p_W, v_W, tangent_W;           // bottom point, structure velocity, belt direction (fwd)
-    Vec3 force_W;
+    Vec3 force_W;                       // contact force on the structure under the point
+    Vec3 along_W;                       // the part carried along the belt (to the chassis)
   };
   void SynchronizeSide(int s, const DriverInputs& inputs, const terrain::Terrain& terrain,
                        soil::SoilContact* soil, double dt, std::vector<WheelState>* wheels);
