@@ -14,9 +14,9 @@
 // (soil_contact.h TrackContact: SCM pressure and Janosi shear node by node) or sampled every
 // contact_spacing_m on rigid ground (normal penalty spring-damper per metre of belt, an elastic
 // bristle per sample with a Coulomb limit). Every contact force is shared between the segment's
-// two points with linear weights; at each point its component along the belt goes to the
-// chassis and, times the pitch radius, against the sprocket (the belt carries it there), the rest
-// to the body under that point (road-wheel arm, idler carrier, or the chassis at the sprocket).
+// two points with linear weights; its friction (soil: shear) component along the belt goes to
+// the chassis and, times the pitch radius, against the sprocket (the belt carries it there), the
+// rest to the body under that point (road-wheel arm, or the chassis at the sprocket and idler).
 // Steering: differential, by braking the inner sprocket behind an open differential (Chrono's
 // ChTrackDrivelineBDS: steering s > 0 adds s to the left sprocket's braking).
 #pragma once
