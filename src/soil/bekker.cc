@@ -66,6 +66,17 @@ double DrawbarPullWong(const SoilParams& s, double r_m, double b_m, double load_
   return thrust - CompactionResistance(s, b_m, z0);
 }
 
+double DrawbarPullWongTrack(const SoilParams& s, double b_m, double l_m, double load_n,
+                            double slip) {
+  const double z0 = PlateSinkage(s, b_m, l_m, load_n);
+  const double il = slip * l_m;
+  const double mobilised =
+      il > 0.0 ? 1.0 - s.janosi_shear_m / il * (1.0 - std::exp(-il / s.janosi_shear_m)) : 0.0;
+  const double thrust =
+      (b_m * l_m * s.cohesion_pa + load_n * std::tan(s.friction_angle_rad)) * mobilised;
+  return thrust - CompactionResistance(s, b_m, z0);
+}
+
 double LateralForceWong(const SoilParams& s, double r_m, double b_m, double load_n,
                         double slip_angle_rad) {
   const double z0 = WheelSinkageBekker(s, r_m, b_m, load_n);

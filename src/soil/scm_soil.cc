@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include "vb/engine/error.h"
 
@@ -70,6 +71,29 @@ bool WheelBottomAt(const Vec3& c, const Vec3& a, double r, double hw, double x, 
   return std::abs(*lat) <= hw;
 }
 
+// Bottom of a flat belt segment from a to b (across it: half width hw along lat, which may be
+// tilted by the track's roll) on the vertical line through (x, y); false if the line misses it.
+// t: position along the segment's horizontal projection (0 at a, 1 at b), l: across it.
+bool BeltBottomAt(const Vec3& a, const Vec3& b, const Vec3& lat, double hw, double x, double y,
+                  double* z, double* t, double* l) {
+  const double sx = b.x() - a.x(), sy = b.y() - a.y();
+  const double len2 = sx * sx + sy * sy;
+  if (len2 < 1e-12) return false;
+  const double inv_len = 1.0 / std::sqrt(len2);
+  double lx = -sy * inv_len, ly = sx * inv_len;     // horizontal, across the segment
+  if (lx * lat.x() + ly * lat.y() < 0.0) {
+    lx = -lx;
+    ly = -ly;
+  }
+  const double ux = x - a.x(), uy = y - a.y();
+  *t = (ux * sx + uy * sy) / len2;
+  *l = ux * lx + uy * ly;
+  if (std::abs(*l) > hw) return false;
+  const double lat_h = std::sqrt(std::max(1e-6, 1.0 - lat.z() * lat.z()));
+  *z = a.z() + *t * (b.z() - a.z()) + *l * lat.z() / lat_h;
+  return true;
+}
+
 }  // namespace
 
 struct ScmSoil::Impl {
@@ -96,8 +120,10 @@ struct ScmSoil::Impl {
   };
   struct Patch {
     size_t begin, end;
-    Vec3 center, axis;   // the wheel that made it
+    Vec3 center, axis;   // the wheel that made it (a belt segment: its ends, axis = across)
     double radius, half_width;
+    bool belt = false;
+    Vec3 belt_end = Vec3::Zero();
   };
   std::vector<Contact> contacts;
   std::vector<Patch> patches;
@@ -366,11 +392,14 @@ void ScmSoil::Impl::DepositOnRim(const Patch& patch, size_t begin, double volume
   room.assign(n, 1e300);
   for (size_t k = 0; k < n; ++k) {
     const Work& w = rim[begin + k];
-    double z = 0.0, lat = 0.0;
-    if (WheelBottomAt(patch.center, patch.axis, patch.radius, patch.half_width, w.i * dx,
-                      w.j * dx, &z, &lat)) {
-      room[k] = std::max(0.0, z - Level(*At(w.i, w.j, false)));
-    }
+    double z = 0.0, lat = 0.0, t = 0.0;
+    const bool under = patch.belt ? BeltBottomAt(patch.center, patch.belt_end, patch.axis,
+                                                 patch.half_width, w.i * dx, w.j * dx, &z, &t,
+                                                 &lat) &&
+                                        t >= 0.0 && t <= 1.0
+                                  : WheelBottomAt(patch.center, patch.axis, patch.radius,
+                                                  patch.half_width, w.i * dx, w.j * dx, &z, &lat);
+    if (under) room[k] = std::max(0.0, z - Level(*At(w.i, w.j, false)));
   }
   double remaining = volume;
   size_t open = n;
@@ -398,6 +427,174 @@ void ScmSoil::Impl::DepositOnRim(const Patch& patch, size_t begin, double volume
     const double share = remaining / static_cast<double>(n);
     for (size_t k = 0; k < n; ++k) Raise(At(rim[begin + k].i, rim[begin + k].j, false), share);
   }
+}
+
+TrackSoilOutput ScmSoil::TrackContact(const TrackSoilInput& tr, double dt) {
+  Impl& m = *impl_;
+  TrackSoilOutput out;
+  for (Vec3& f : out.point_force_W) f.setZero();
+  const int n = std::clamp(tr.n_points, 0, kMaxTrackPoints);
+  const double half_w = 0.5 * tr.width_m;
+  const Vec3 lat = tr.lateral_W.normalized();
+  double total_len = 0.0;
+  for (int k = 0; k + 1 < n; ++k) total_len += (tr.points_W[k + 1] - tr.points_W[k]).norm();
+  if (!(total_len > 0.0)) return out;
+  const double mass = tr.mass_kg > 0.0 ? tr.mass_kg : config_.default_wheel_mass_kg;
+  const double cell = m.dx * m.dx;
+  for (int k = 0; k + 1 < n; ++k) {
+    const Vec3& a = tr.points_W[k];
+    const Vec3& b = tr.points_W[k + 1];
+    const Vec3 mid = 0.5 * (a + b);
+    const terrain::SurfacePoint under = m.terrain.Query(mid.x(), mid.y());
+    out.segment_surface[k] = under.surface;
+    if (!terrain::IsDeformable(under.surface)) continue;
+    out.segment_on_soil[k] = true;
+    ++m.stats.wheel_queries;
+    const double seg_len = (b - a).norm();
+    if (seg_len < 1e-9) continue;
+    const Vec3 s_dir = (b - a) / seg_len;
+    Vec3 nw = lat.cross(s_dir);  // belt surface normal, towards the vehicle
+    if (nw.z() < 0.0) nw = -nw;
+    const double nz = std::max(0.05, under.normal_W.z());
+    const double reach = 0.5 * seg_len + half_w;
+    const double soil_top = under.height_m + reach * std::sqrt(1.0 - nz * nz) / nz +
+                            m.max_raise_m + 0.5 * m.dx;
+    if (std::min(a.z(), b.z()) - half_w * std::abs(lat.z()) >= soil_top) continue;
+    const double ext = half_w + m.dx;
+    const int i_lo = static_cast<int>(std::ceil((std::min(a.x(), b.x()) - ext) / m.dx));
+    const int i_hi = static_cast<int>(std::floor((std::max(a.x(), b.x()) + ext) / m.dx));
+    const int j_lo = static_cast<int>(std::ceil((std::min(a.y(), b.y()) - ext) / m.dx));
+    const int j_hi = static_cast<int>(std::floor((std::max(a.y(), b.y()) + ext) / m.dx));
+    // The last segment owns its end point; every other segment stops just before it, so a node
+    // belongs to one segment only.
+    const double t_end = k + 2 == n ? 1.0 : 1.0 - 1e-12;
+    // Scan only the segment's footprint: per grid row, the x interval where the node is within
+    // the belt's half width (+ dx/2) across and within the part of the segment that can reach
+    // below the soil top (the sprocket and idler segments rise out of the soil).
+    const double sx = b.x() - a.x(), sy = b.y() - a.y();
+    const double len2 = sx * sx + sy * sy;
+    if (len2 < 1e-12) continue;
+    const double inv_len = 1.0 / std::sqrt(len2);
+    double lx = -sy * inv_len, ly = sx * inv_len;
+    if (lx * lat.x() + ly * lat.y() < 0.0) {
+      lx = -lx;
+      ly = -ly;
+    }
+    const double lat_h = std::sqrt(std::max(1e-6, 1.0 - lat.z() * lat.z()));
+    const double top = soil_top + (half_w + m.dx) * std::abs(lat.z()) / lat_h;
+    double t_lo = 0.0, t_hi = t_end;
+    const double dz = b.z() - a.z();
+    if (dz > 1e-12) t_hi = std::min(t_hi, (top - a.z()) / dz);
+    if (dz < -1e-12) t_lo = std::max(t_lo, (top - a.z()) / dz);
+    if (t_lo > t_hi) continue;
+    const double hw_scan = half_w + 0.5 * m.dx;
+    // x - a.x within [lo, hi] where c0 + c1 (x - a.x) lies in [v_lo, v_hi]
+    auto clip = [](double c0, double c1, double v_lo, double v_hi, double* lo, double* hi) {
+      if (std::abs(c1) < 1e-12) {
+        if (c0 < v_lo || c0 > v_hi) *lo = 1.0, *hi = -1.0;
+        return;
+      }
+      double x0 = (v_lo - c0) / c1, x1 = (v_hi - c0) / c1;
+      if (x0 > x1) std::swap(x0, x1);
+      *lo = std::max(*lo, x0);
+      *hi = std::min(*hi, x1);
+    };
+    m.hits.clear();
+    for (int j = j_lo; j <= j_hi; ++j) {
+      const double uy = j * m.dx - a.y();
+      double lo = -1e300, hi = 1e300;
+      clip(uy * sy / len2, sx / len2, t_lo, t_hi, &lo, &hi);
+      clip(uy * ly, lx, -hw_scan, hw_scan, &lo, &hi);
+      if (lo > hi) continue;
+      const int i0 = std::max(i_lo, static_cast<int>(std::ceil((a.x() + lo) / m.dx - 1e-9)));
+      const int i1 = std::min(i_hi, static_cast<int>(std::floor((a.x() + hi) / m.dx + 1e-9)));
+      // BeltBottomAt inlined along the row (t, l and the height are linear in x)
+      const double t_row = uy * sy / len2, l_row = uy * ly;
+      const double tilt = lat.z() / lat_h;
+      for (int i = i0; i <= i1; ++i) {
+        const double ux = i * m.dx - a.x();
+        const double t = t_row + ux * sx / len2;
+        const double l = l_row + ux * lx;
+        if (std::abs(l) > hw_scan || t < 0.0 || t > t_end) continue;
+        const double hit_z = a.z() + t * dz + l * tilt;
+        const double cover = std::min(1.0, (half_w - std::abs(l)) / m.dx + 0.5);
+        if (!(cover > 0.0)) continue;
+        Node* node = m.At(i, j, true);
+        if (node == nullptr || node->slot < 0) continue;
+        if (hit_z >= Level(*node)) continue;
+        m.hits.push_back({node, i, j, Vec3(i * m.dx, j * m.dx, hit_z), l, t, cover});
+      }
+    }
+    if (m.hits.empty()) continue;
+    double lat_lo = 1e300, lat_hi = -1e300;
+    for (const Impl::Hit& h : m.hits) {
+      lat_lo = std::min(lat_lo, h.lat);
+      lat_hi = std::max(lat_hi, h.lat);
+    }
+    const double bb = std::max(m.dx, std::min(lat_hi - lat_lo + m.dx, 2.0 * half_w));
+    const double seg_mass = mass * seg_len / total_len;
+    double k_total = 0.0, c_total = 0.0;
+    for (const Impl::Hit& h : m.hits) {
+      const SoilParams& sp = m.soils[static_cast<size_t>(h.node->slot)];
+      k_total += sp.elastic_stiffness_papm * cell * h.cover;
+      c_total += sp.damping_paspm * cell * h.cover;
+    }
+    const double k_scale = std::min(1.0, kStiffnessLimit * seg_mass / (k_total * dt * dt));
+    const double c_scale = 1.0 / (1.0 + c_total * dt / seg_mass);
+    const size_t begin = m.contacts.size();
+    for (const Impl::Hit& h : m.hits) {
+      Node& nd = *h.node;
+      const SoilParams& sp = m.soils[static_cast<size_t>(nd.slot)];
+      const double ca = nd.cos_slope;
+      const double z = ca * (nd.level0_m - h.p.z());
+      const double ke = sp.elastic_stiffness_papm * k_scale;
+      double sigma = ke * (z - nd.plastic_m);
+      const double p_bekker = (sp.bekker_kc / bb + sp.bekker_kphi) * std::pow(z, sp.bekker_n);
+      double flow = 0.0;
+      if (sigma > p_bekker) {
+        sigma = p_bekker;
+        const double plastic = z - p_bekker / ke;
+        flow = (plastic - nd.plastic_m) / ca;
+        nd.plastic_m = plastic;
+      }
+      const double t = h.lon;
+      const Vec3 v = (1.0 - t) * tr.velocities_W[k] + t * tr.velocities_W[k + 1];
+      const double vn = v.dot(nw);
+      const double area = cell * h.cover / std::max(kMinCos, nw.z());
+      const double vn_terrain = v.dot(under.normal_W);
+      const double sigma_damp = std::max(-sigma, -sp.damping_paspm * c_scale * vn_terrain);
+      if (nd.contact_step < m.step - 1) nd.shear_m.setZero();
+      const Vec3 vt = v - vn * nw;
+      nd.shear_m += vt * dt;
+      nd.shear_m -= nd.shear_m.dot(nw) * nw;
+      const double jmax = kShearCapInK * sp.janosi_shear_m;
+      double j_len = nd.shear_m.norm();
+      if (j_len > jmax) {
+        nd.shear_m *= jmax / j_len;
+        j_len = jmax;
+      }
+      Vec3 f = sigma * area * nw + sigma_damp * cell * h.cover * under.normal_W;
+      if (j_len > 0.0) {
+        const double tan_phi = m.tan_friction[static_cast<size_t>(nd.slot)];
+        const double tau_max = sp.cohesion_pa + (sigma + sigma_damp) * tan_phi;
+        const double tau = tau_max * (1.0 - std::exp(-j_len / sp.janosi_shear_m));
+        f -= (tau * area / j_len) * nd.shear_m;
+      }
+      out.point_force_W[k] += (1.0 - t) * f;
+      out.point_force_W[k + 1] += t * f;
+      nd.contact_step = m.step;
+      const double sink = ca * (nd.base_m - h.p.z());
+      out.point_sinkage_m[k] = std::max(out.point_sinkage_m[k], sink);
+      out.point_sinkage_m[k + 1] = std::max(out.point_sinkage_m[k + 1], sink);
+      m.contacts.push_back({h.i, h.j, flow});
+    }
+    Impl::Patch patch{begin, m.contacts.size(), a, lat, 0.0, half_w};
+    patch.belt = true;
+    patch.belt_end = b;
+    m.patches.push_back(patch);
+    m.stats.contact_nodes += static_cast<long>(m.hits.size());
+  }
+  return out;
 }
 
 void ScmSoil::EndStep(double /*dt*/) {

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "vb/engine/convex_shape.h"
 #include "vb/engine/error.h"
@@ -16,6 +17,7 @@
 #include "vb/vehicles/suspension_kinematics.h"
 #include "vb/vehicles/tire_contact.h"
 #include "vb/vehicles/tmeasy_tire.h"
+#include "vb/vehicles/track_running_gear.h"
 
 namespace vb::vehicles {
 
@@ -124,6 +126,7 @@ struct VehicleSnapshot::Data {
   Vehicle::Internals internals;
   DriverInputs inputs;
   VehicleState state;
+  TrackRunningGear::State track;   // tracked vehicles only
 };
 
 VehicleSnapshot::VehicleSnapshot() = default;
@@ -173,6 +176,46 @@ Vehicle::Vehicle(const VehicleParams& params, const terrain::Terrain& terrain, c
   base.inertia_kgm2 = ch.inertia_kgm2;
   base.pose_W.rotation = pose_W.rotation;
   base.pose_W.position = pose_W.position + pose_W.rotation * ch.com_B;
+
+  if (params_.tracked) {
+    // The belts and the idlers (with their tensioner carriers) ride with the chassis: point
+    // masses on each side, the belt at its loop's centre (its motion along the loop is the
+    // sprocket's spin inertia, track_running_gear.cc).
+    const TrackParams& tp = params_.tracks;
+    const Vec3 belt_B(0.5 * (tp.sprocket_B.x() + tp.idler_B.x()), tp.half_gauge_m,
+                      0.5 * (tp.sprocket_B.z() + tp.road_wheel_z_m));
+    const Vec3 idler_B(tp.idler_B.x(), tp.half_gauge_m, tp.idler_B.z());
+    const double idler_kg = tp.idler_mass_kg + tp.tensioner_carrier_mass_kg;
+    const std::pair<Vec3, double> points[4] = {
+        {belt_B, tp.belt_mass_kg}, {Vec3(belt_B.x(), -belt_B.y(), belt_B.z()), tp.belt_mass_kg},
+        {idler_B, idler_kg}, {Vec3(idler_B.x(), -idler_B.y(), idler_B.z()), idler_kg}};
+    double m = ch.mass_kg;
+    Vec3 mc = ch.mass_kg * ch.com_B;
+    for (const auto& pm : points) {
+      m += pm.second;
+      mc += pm.second * pm.first;
+    }
+    const Vec3 com = mc / m;
+    auto parallel_axis = [](double mass, const Vec3& d) {  // diagonal terms only
+      return Vec3(mass * (d.y() * d.y() + d.z() * d.z()), mass * (d.x() * d.x() + d.z() * d.z()),
+                  mass * (d.x() * d.x() + d.y() * d.y()));
+    };
+    ch.inertia_kgm2 += parallel_axis(ch.mass_kg, ch.com_B - com);
+    for (const auto& pm : points) ch.inertia_kgm2 += parallel_axis(pm.second, pm.first - com);
+    ch.mass_kg = m;
+    ch.com_B = com;
+    in_->com_B = com;
+    base.mass_kg = ch.mass_kg;
+    base.inertia_kgm2 = ch.inertia_kgm2;
+    base.pose_W.position = pose_W.position + pose_W.rotation * ch.com_B;
+    std::vector<engine::MultiBodyLinkSpec> links;
+    track_ = std::make_unique<TrackRunningGear>(params_, ch.com_B, &links);
+    body_ = world_->AddMultiBody(base, links);
+    track_->Attach(world_, body_);
+    state_.wheels.resize(2 * static_cast<size_t>(track_->num_road_wheels()));
+    UpdateState();
+    return;
+  }
 
   // wheels, axle-major, left then right; driven wheels also carry the driveline's shafts
   const int driven_axles = static_cast<int>(std::count_if(
@@ -303,6 +346,11 @@ void Vehicle::SetInputs(const DriverInputs& inputs) {
 }
 
 void Vehicle::Synchronize(double dt) {
+  if (track_) {
+    track_->Synchronize(inputs_, terrain_, soil_, dt, &state_.wheels);
+    AddBodyContacts();
+    return;
+  }
   const size_t n = in_->corners.size();
 
   // steering: road-wheel angles, then implicit position servos on the knuckles
@@ -479,6 +527,10 @@ void Vehicle::AddBodyContacts() {
     ++(c.obstacle_tag < 0 ? state_.body_ground_contacts : state_.body_obstacle_contacts);
   }
   if (obstacles_ == nullptr) return;
+  if (track_) {
+    track_->AddObstacleContacts(*obstacles_, &b.scratch, &b.contacts);
+    return;
+  }
   for (const Internals::Corner& corner : in_->corners) {
     b.contacts.clear();
     const Pose wheel = world_->LinkPose(body_, corner.wheel_link);
@@ -496,7 +548,8 @@ void Vehicle::AddBodyContacts() {
 VehicleSnapshot Vehicle::Snapshot() const {
   VehicleSnapshot snapshot;
   snapshot.data_ = std::make_unique<VehicleSnapshot::Data>(
-      VehicleSnapshot::Data{world_->GetState(body_), *in_, inputs_, state_});
+      VehicleSnapshot::Data{world_->GetState(body_), *in_, inputs_, state_,
+                            track_ ? track_->state() : TrackRunningGear::State()});
   return snapshot;
 }
 
@@ -519,6 +572,7 @@ void Vehicle::Restore(const VehicleSnapshot& snapshot) {
   world_->SetState(body_, d.body);
   inputs_ = d.inputs;
   state_ = d.state;
+  if (track_) track_->set_state(d.track);
 }
 
 void Vehicle::UpdateState() {
@@ -531,9 +585,14 @@ void Vehicle::UpdateState() {
   state_.angular_velocity_W = w;
   state_.forward_speed_mps = state_.velocity_W.dot(com.rotation * Vec3::UnitX());
   state_.rpy = ToRpy(com.rotation);
-  state_.gear = in_->powertrain.gear;
-  state_.engine_speed_radps = in_->powertrain.engine_speed_radps;
-  state_.engine_torque_nm = in_->powertrain.engine_torque_nm;
+  const PowertrainState& pt = track_ ? track_->state().powertrain : in_->powertrain;
+  state_.gear = pt.gear;
+  state_.engine_speed_radps = pt.engine_speed_radps;
+  state_.engine_torque_nm = pt.engine_torque_nm;
+  if (track_) {
+    track_->UpdateWheelStates(&state_.wheels);
+    return;
+  }
   for (size_t i = 0; i < in_->corners.size(); ++i) {
     const Internals::Corner& c = in_->corners[i];
     WheelState& ws = state_.wheels[i];

@@ -335,11 +335,29 @@ class VehicleFitTest : public VehicleIoTest {
 };
 
 TEST_F(VehicleFitTest, LibraryLoads) {
-  for (const char* name : {"art", "vw", "gator", "feda", "man5t", "man7t", "man10t"}) {
+  for (const char* name : {"art", "vw", "gator", "feda", "man5t", "man7t", "man10t", "m113"}) {
     const vehicles::VehicleParams v =
         LoadVehicle(std::string(VB_SOURCE_DIR "/data/vehicles/") + name + ".yaml");
     EXPECT_EQ(v.name, name);
   }
+}
+
+// The tracked M113: `tracks` instead of axles, steering, wheel and tire; the loader describes
+// the road-wheel stations as axles (vehicle_params.h TrackParams).
+TEST_F(VehicleFitTest, TrackedVehicleLoadsWithItsStations) {
+  const vehicles::VehicleParams v = LoadVehicle(VB_SOURCE_DIR "/data/vehicles/m113.yaml");
+  EXPECT_TRUE(v.tracked);
+  ASSERT_EQ(v.axles.size(), 5u);
+  EXPECT_DOUBLE_EQ(v.axles[0].x_m, v.tracks.road_wheel_x_m[0]);
+  EXPECT_DOUBLE_EQ(v.axles[0].half_track_m, v.tracks.half_gauge_m);
+  EXPECT_DOUBLE_EQ(v.wheel.radius_m, v.tracks.road_wheel_radius_m + v.tracks.shoe_height_m);
+  EXPECT_EQ(v.transmission.forward_ratios.size(), 4u);
+  // wheeled keys are unknown in a tracked file, and the geometry must fit
+  ExpectFitError("m113", "engine:", "tire: {}\nengine:", 0, "tire", "tire", "unknown key 'tire'");
+  ExpectFitError("m113", "road_wheel_x_m: [1.3335, 0.6665", "road_wheel_x_m: [0.6665, 1.3335", 0,
+                 "", "tracks.road_wheel_x_m[1]", "road wheels must be listed front to rear");
+  ExpectFitError("m113", "idler_B: [-1.9615", "idler_B: [1.8", 0, "", "tracks.idler_B",
+                 "the idler must be at least 0.5 m from the sprocket");
 }
 
 TEST_F(VehicleFitTest, SteeringMustFitTheSteeredAxles) {

@@ -12,6 +12,7 @@
 #include "vb/vehicles/engine_models.h"
 #include "vb/vehicles/suspension_forces.h"
 #include "vb/vehicles/suspension_kinematics.h"
+#include "vb/vehicles/track_running_gear.h"
 
 namespace vb::io {
 namespace {
@@ -561,12 +562,124 @@ void CheckSteeringFits(const VehicleParams& v, const StrictNode& steering) {
   }
 }
 
+// A tracked running gear (vehicle_params.h TrackParams).
+vehicles::TrackParams ReadTracks(const StrictNode& node) {
+  const StrictMap m = node.AsMap(
+      {"half_gauge_m", "shoe_width_m", "shoe_height_m", "belt_mass_kg", "belt_stiffness_npm",
+       "sprocket_B", "sprocket_radius_m", "sprocket_mass_kg", "sprocket_inertia_kgm2",
+       "brake_torque_nm", "idler_B", "idler_radius_m", "idler_mass_kg", "idler_inertia_kgm2",
+       "tensioner_free_length_m", "tensioner_preload_n", "tensioner_stiffness_npm",
+       "tensioner_damping_nspm", "tensioner_carrier_mass_kg", "road_wheel_x_m", "road_wheel_z_m",
+       "road_wheel_radius_m", "road_wheel_width_m", "road_wheel_mass_kg",
+       "road_wheel_inertia_kgm2", "arm_pivot_offset_B", "arm_mass_kg", "arm_inertia_kgm2",
+       "torsion_stiffness_nmprad", "torsion_damping_nmsprad", "torsion_preload_nm",
+       "bump_angle_rad", "rebound_angle_rad", "stop_stiffness_nmprad", "contact_spacing_m",
+       "friction", "normal_stiffness_npm2", "normal_damping_nspm2", "bristle_stiffness_npm2",
+       "bristle_damping_nspm2"});
+  vehicles::TrackParams t;
+  t.half_gauge_m = m.Required("half_gauge_m").AsPositive();
+  t.shoe_width_m = m.Required("shoe_width_m").AsPositive();
+  t.shoe_height_m = m.Required("shoe_height_m").AsNonNegative();
+  t.belt_mass_kg = m.Required("belt_mass_kg").AsPositive();
+  t.belt_stiffness_npm = m.Required("belt_stiffness_npm").AsPositive();
+  t.sprocket_B = m.Required("sprocket_B").AsVec3();
+  t.sprocket_radius_m = m.Required("sprocket_radius_m").AsPositive();
+  t.sprocket_mass_kg = m.Required("sprocket_mass_kg").AsPositive();
+  t.sprocket_inertia_kgm2 = m.Required("sprocket_inertia_kgm2").AsPositive();
+  t.brake_torque_nm = m.Required("brake_torque_nm").AsNonNegative();
+  const StrictNode idler = m.Required("idler_B");
+  t.idler_B = idler.AsVec3();
+  if (std::abs(t.idler_B.x() - t.sprocket_B.x()) < 0.5) {
+    idler.Fail("the idler must be at least 0.5 m from the sprocket along x");
+  }
+  t.idler_radius_m = m.Required("idler_radius_m").AsPositive();
+  t.idler_mass_kg = m.Required("idler_mass_kg").AsPositive();
+  t.idler_inertia_kgm2 = m.Required("idler_inertia_kgm2").AsPositive();
+  t.tensioner_free_length_m = m.Required("tensioner_free_length_m").AsPositive();
+  t.tensioner_preload_n = m.Required("tensioner_preload_n").AsPositive();
+  t.tensioner_stiffness_npm = m.Required("tensioner_stiffness_npm").AsPositive();
+  t.tensioner_damping_nspm = m.Required("tensioner_damping_nspm").AsNonNegative();
+  t.tensioner_carrier_mass_kg = m.Required("tensioner_carrier_mass_kg").AsPositive();
+  const StrictNode xs = m.Required("road_wheel_x_m");
+  for (const StrictNode& x : xs.AsList(2, vehicles::kMaxRoadWheels)) {
+    t.road_wheel_x_m.push_back(x.AsDouble());
+    const size_t n = t.road_wheel_x_m.size();
+    if (n > 1 && !(t.road_wheel_x_m[n - 1] < t.road_wheel_x_m[n - 2])) {
+      x.Fail("road wheels must be listed front to rear (x strictly decreasing)");
+    }
+  }
+  const double front = std::max(t.sprocket_B.x(), t.idler_B.x());
+  const double rear = std::min(t.sprocket_B.x(), t.idler_B.x());
+  if (!(t.road_wheel_x_m.front() < front && t.road_wheel_x_m.back() > rear)) {
+    xs.Fail("the road wheels must lie between the sprocket and the idler");
+  }
+  t.road_wheel_z_m = m.Required("road_wheel_z_m").AsDouble();
+  t.road_wheel_radius_m = m.Required("road_wheel_radius_m").AsPositive();
+  t.road_wheel_width_m = m.Required("road_wheel_width_m").AsPositive();
+  t.road_wheel_mass_kg = m.Required("road_wheel_mass_kg").AsPositive();
+  t.road_wheel_inertia_kgm2 = m.Required("road_wheel_inertia_kgm2").AsPositive();
+  const StrictNode pivot = m.Required("arm_pivot_offset_B");
+  t.arm_pivot_offset_B = pivot.AsVec3();
+  if (t.arm_pivot_offset_B.y() != 0.0 ||
+      std::hypot(t.arm_pivot_offset_B.x(), t.arm_pivot_offset_B.z()) < 0.05) {
+    pivot.Fail("the arm pivot must be at least 0.05 m from the wheel centre in x-z (y = 0)");
+  }
+  t.arm_mass_kg = m.Required("arm_mass_kg").AsPositive();
+  t.arm_inertia_kgm2 = m.Required("arm_inertia_kgm2").AsPositiveVec3();
+  t.torsion_stiffness_nmprad = m.Required("torsion_stiffness_nmprad").AsPositive();
+  t.torsion_damping_nmsprad = m.Required("torsion_damping_nmsprad").AsNonNegative();
+  t.torsion_preload_nm = m.Required("torsion_preload_nm").AsDouble();
+  t.bump_angle_rad = m.Required("bump_angle_rad").AsPositive();
+  t.rebound_angle_rad = m.Required("rebound_angle_rad").AsPositive();
+  t.stop_stiffness_nmprad = m.Required("stop_stiffness_nmprad").AsPositive();
+  const StrictNode spacing = m.Required("contact_spacing_m");
+  t.contact_spacing_m = spacing.AsPositive();
+  if (t.contact_spacing_m < 0.01) spacing.Fail("must be at least 0.01 m");
+  t.friction = m.Required("friction").AsPositive();
+  t.normal_stiffness_npm2 = m.Required("normal_stiffness_npm2").AsPositive();
+  t.normal_damping_nspm2 = m.Required("normal_damping_nspm2").AsNonNegative();
+  t.bristle_stiffness_npm2 = m.Required("bristle_stiffness_npm2").AsPositive();
+  t.bristle_damping_nspm2 = m.Required("bristle_damping_nspm2").AsNonNegative();
+  return t;
+}
+
+// The road-wheel stations of a tracked vehicle as axles (what the runner and the tools count and
+// place; vehicle_params.h TrackParams): driven, unsteered, the road wheel with the shoe height
+// added to its radius (the belt's bottom).
+void TrackStations(VehicleParams* v) {
+  const vehicles::TrackParams& t = v->tracks;
+  v->wheel.radius_m = t.road_wheel_radius_m + t.shoe_height_m;
+  v->wheel.width_m = t.shoe_width_m;
+  v->wheel.mass_kg = t.road_wheel_mass_kg;
+  v->wheel.inertia_kgm2 = Vec3(1.0, t.road_wheel_inertia_kgm2, 1.0);
+  v->tire.friction = t.friction;
+  for (double x : t.road_wheel_x_m) {
+    AxleParams a;
+    a.x_m = x;
+    a.half_track_m = t.half_gauge_m;
+    a.z_m = t.road_wheel_z_m;
+    a.steered = false;
+    a.driven = true;
+    a.brake_torque_nm = 0.0;
+    a.suspension.carrier_mass_kg = t.arm_mass_kg;
+    v->axles.push_back(a);
+  }
+}
+
 }  // namespace
 
 vehicles::VehicleParams LoadVehicle(const std::string& path) {
   const StrictNode root = LoadYamlFile(path);
-  const StrictMap top = root.AsMap({"name", "chassis", "axles", "steering", "wheel", "tire",
-                                    "engine", "transmission", "driveline", "max_step_s"});
+  const StrictMap any = root.AsMap({"name", "chassis", "axles", "steering", "wheel", "tire",
+                                    "engine", "transmission", "driveline", "max_step_s",
+                                    "tracks"});
+  // A tracked vehicle has `tracks` instead of axles, steering, wheel and tire.
+  const bool tracked = any.Has("tracks");
+  const StrictMap top =
+      tracked ? root.AsMap({"name", "chassis", "tracks", "engine", "transmission", "driveline",
+                            "max_step_s"})
+              : root.AsMap({"name", "chassis", "axles", "steering", "wheel", "tire", "engine",
+                            "transmission", "driveline", "max_step_s"});
   VehicleParams v;
   const StrictNode name = top.Required("name");
   v.name = name.AsString();
@@ -579,6 +692,15 @@ vehicles::VehicleParams LoadVehicle(const std::string& path) {
     }
   }
   v.chassis = ReadChassis(top.Required("chassis"));
+  if (tracked) {
+    v.tracked = true;
+    v.tracks = ReadTracks(top.Required("tracks"));
+    TrackStations(&v);
+    v.engine = ReadEngine(top.Required("engine"));
+    v.transmission = ReadTransmission(top.Required("transmission"));
+    v.driveline = ReadDriveline(top.Required("driveline"));
+    return v;
+  }
   v.axles = ReadAxles(top.Required("axles"));
   v.steering = ReadSteering(top.Required("steering"));
   CheckSteeringFits(v, top.Required("steering"));

@@ -31,6 +31,13 @@ double CompactionResistance(const SoilParams& s, double b_m, double z0_m);
 // l = sqrt(2 r z0) (front arc), A = b l.
 double DrawbarPullWong(const SoilParams& s, double r_m, double b_m, double load_n, double slip);
 
+// Drawbar pull of one track (contact b x l, uniform pressure, load W) at slip i in (0, 1]
+// (Wong, "Theory of Ground Vehicles", ch. 2): the shear displacement grows as j = i x along the
+// contact, so the thrust is H = (A c + W tan(phi)) [1 - K / (i l) (1 - exp(-i l / K))], A = b l;
+// minus the compaction resistance of the plate sinkage z0 (PlateSinkage), R_c = b k z0^(n+1)/(n+1).
+double DrawbarPullWongTrack(const SoilParams& s, double b_m, double l_m, double load_n,
+                            double slip);
+
 // Lateral (cornering) force of a free-rolling rigid wheel at slip angle alpha in (0, pi/2), same
 // contact patch: the side shear displacement grows as j_y = x tan(alpha) along the contact, so
 // F_y = (A c + W tan(phi)) [1 - K / (l tan a) (1 - exp(-l tan a / K))] (Wong, "Theory of Ground

@@ -57,6 +57,10 @@ class ScmSoil : public SoilContact {
   ~ScmSoil() override;
 
   WheelSoilOutput WheelContact(const WheelSoilInput& wheel, double dt) override;
+  // The track's belt segments over deformable ground: the same node law as a wheel (Bekker
+  // pressure with b = the belt width, Janosi shear on the node's accumulated displacement, which
+  // for a track grows with the slip along the contact as in Wong's track theory).
+  TrackSoilOutput TrackContact(const TrackSoilInput& track, double dt) override;
   void EndStep(double dt) override;
 
   // Current soil surface (unloaded) at grid node nearest to (x, y).

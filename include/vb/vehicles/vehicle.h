@@ -1,5 +1,7 @@
-// A wheeled vehicle assembled from VehicleParams on the physics adapter, with vb's own
-// wheel-ground contact. Order per step (the runner calls it): SetInputs -> Synchronize (contact,
+// A vehicle assembled from VehicleParams on the physics adapter, with vb's own ground contact:
+// wheels (tire models or the soil per wheel) or, for a tracked vehicle, the running gear of
+// track_running_gear.h (the seam: everything outside sees the same state, the road wheels
+// standing in for wheels). Order per step (the runner calls it): SetInputs -> Synchronize (contact,
 // tire, suspension, powertrain and brake forces for this step) -> world.Step(dt) -> UpdateState.
 #pragma once
 
@@ -53,6 +55,7 @@ struct VehicleState {
 };
 
 class Vehicle;
+class TrackRunningGear;
 
 // A vehicle's complete dynamic state: the multibody state and every internal state (tire
 // bristles and relaxation, powertrain, inputs). Opaque; made by Vehicle::Snapshot, restored by
@@ -99,6 +102,8 @@ class Vehicle {
   const VehicleParams& params() const { return params_; }
   const DriverInputs& inputs() const { return inputs_; }
   engine::MultiBodyId body() const { return body_; }
+  // The running gear of a tracked vehicle (params().tracked), else null.
+  const TrackRunningGear* track() const { return track_.get(); }
 
  private:
   friend class VehicleSnapshot;
@@ -117,6 +122,7 @@ class Vehicle {
   VehicleState state_;
   std::unique_ptr<Internals> in_;
   std::unique_ptr<Body> body_contact_;
+  std::unique_ptr<TrackRunningGear> track_;
 };
 
 }  // namespace vb::vehicles

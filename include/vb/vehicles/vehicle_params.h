@@ -220,6 +220,68 @@ struct DrivelineParams {
   double axle_box_inertia_kgm2 = 0.0;
 };
 
+// Running gear of a tracked vehicle (tracks.h, docs/vehicles.md "Tracked vehicles"): per side a
+// drive sprocket, an idler on a sliding carrier pushed by the tensioner, and road wheels on
+// trailing torsion-bar arms; the track is an elastic belt around them whose ground run carries
+// the load between and under the road wheels. Chassis frame, left side (the right side mirrors
+// y -> -y). The loader also describes each road-wheel station as an axle (VehicleParams::axles,
+// wheel = road wheel with the shoe height added to its radius) so everything that counts or
+// places wheels (runner start pose, observation, viewer) works unchanged.
+struct TrackParams {
+  double half_gauge_m = 0.0;           // track centre |y|
+  double shoe_width_m = 0.0;           // contact width of the belt
+  double shoe_height_m = 0.0;          // belt thickness under the road wheels
+  double belt_mass_kg = 0.0;           // all shoes of one track
+  double belt_stiffness_npm = 0.0;     // of the loop's length (tension per metre of stretch)
+  // Sprocket: pitch radius (the belt's speed is spin x radius), spin inertia, mass.
+  Vec3 sprocket_B = Vec3::Zero();
+  double sprocket_radius_m = 0.0;
+  double sprocket_mass_kg = 0.0;
+  double sprocket_inertia_kgm2 = 0.0;
+  double brake_torque_nm = 0.0;        // per sprocket (steering and service brakes)
+  // Idler: centre at design, radius, wheel mass and spin inertia; the carrier slides along
+  // chassis x and the tensioner pushes it away from the sprocket: F = preload - k (L - L0) - c dL/dt
+  // with L = free_length + carrier travel (the carrier sits at L0 at design).
+  Vec3 idler_B = Vec3::Zero();
+  double idler_radius_m = 0.0;
+  double idler_mass_kg = 0.0;
+  double idler_inertia_kgm2 = 0.0;
+  double tensioner_free_length_m = 0.0;
+  double tensioner_preload_n = 0.0;
+  double tensioner_stiffness_npm = 0.0;
+  double tensioner_damping_nspm = 0.0;
+  double tensioner_carrier_mass_kg = 0.0;
+  // Road wheels: centres at design (front to rear), radius, width, mass, spin inertia; each on a
+  // trailing arm whose chassis pivot is at wheel centre + arm_pivot_offset_B (x, z).
+  std::vector<double> road_wheel_x_m;
+  double road_wheel_z_m = 0.0;
+  double road_wheel_radius_m = 0.0;
+  double road_wheel_width_m = 0.0;
+  double road_wheel_mass_kg = 0.0;
+  double road_wheel_inertia_kgm2 = 0.0;
+  Vec3 arm_pivot_offset_B = Vec3::Zero();
+  double arm_mass_kg = 0.0;
+  Vec3 arm_inertia_kgm2 = Vec3::Ones();
+  // Torsion bar: torque = preload - k angle - c rate (angle + lifts the wheel, 0 at design).
+  // preload_nm 0 means "the static load": the loader sets it so the arms sit at design when the
+  // vehicle rests on flat ground (docs/vehicles.md).
+  double torsion_stiffness_nmprad = 0.0;
+  double torsion_damping_nmsprad = 0.0;
+  double torsion_preload_nm = 0.0;
+  double bump_angle_rad = 0.0;         // stop engagement (wheel up)
+  double rebound_angle_rad = 0.0;      // stop engagement (wheel down)
+  double stop_stiffness_nmprad = 0.0;  // linear stop beyond either
+  // Ground contact of the belt: samples along the ground run, each a normal penalty spring-
+  // damper per metre of belt and an elastic bristle with a Coulomb limit (rigid ground); on soil
+  // the SCM solver's pressure and Janosi shear (soil_contact.h TrackContact).
+  double contact_spacing_m = 0.1;
+  double friction = 0.8;
+  double normal_stiffness_npm2 = 0.0;  // N/m of penetration per metre of belt
+  double normal_damping_nspm2 = 0.0;
+  double bristle_stiffness_npm2 = 0.0;
+  double bristle_damping_nspm2 = 0.0;
+};
+
 struct VehicleParams {
   std::string name;
   // Largest physics step the vehicle is stable at (s); 0: any (the runner's 5 ms). The runner
@@ -233,6 +295,10 @@ struct VehicleParams {
   EngineParams engine;
   TransmissionParams transmission;
   DrivelineParams driveline;
+  // A tracked vehicle (the M113): `tracks` describes the running gear, `axles` its road-wheel
+  // stations (see TrackParams); steering is differential (steering.model unused).
+  bool tracked = false;
+  TrackParams tracks;
 };
 
 }  // namespace vb::vehicles

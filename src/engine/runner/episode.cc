@@ -92,6 +92,12 @@ class TimedSoil : public soil::SoilContact {
     seconds_ += std::chrono::duration<double>(Clock::now() - t0).count();
     return out;
   }
+  soil::TrackSoilOutput TrackContact(const soil::TrackSoilInput& track, double dt) override {
+    const auto t0 = Clock::now();
+    const soil::TrackSoilOutput out = soil_->TrackContact(track, dt);
+    seconds_ += std::chrono::duration<double>(Clock::now() - t0).count();
+    return out;
+  }
   void EndStep(double dt) override { soil_->EndStep(dt); }
   // Seconds of wheel contact since the last call.
   double TakeSeconds() {

@@ -84,7 +84,7 @@ struct TrialSpec {
 };
 
 // Most wheels (or road wheels) a vehicle may have: per-step wheel records are stored inline.
-constexpr size_t kMaxWheels = 16;
+constexpr size_t kMaxWheels = 20;   // the M113: 2 x 5 road wheels
 
 // One row of the per-step trajectory.
 struct TrajectorySample {

@@ -1,0 +1,425 @@
+// Tracked running gear (track_running_gear.h).
+#include "vb/vehicles/track_running_gear.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "vb/engine/error.h"
+
+namespace vb::vehicles {
+
+namespace {
+
+// Implicit form of an explicit damper c on a mode of mass m (as vehicle.cc).
+double ImplicitDamping(double c, double dt, double mass_kg) { return c / (1.0 + c * dt / mass_kg); }
+
+// Joint travel limits beyond the stops (last resort only).
+constexpr double kArmHardLimitBeyondStops_rad = 0.15;
+constexpr double kIdlerTravel_m = 0.15;
+constexpr int kMaxObstacleContactsPerWheel = 4;
+
+// d(centre)/d(angle) of a point at `d` from a revolute-y pivot, in (x, z).
+Vec2 RotationRate(const Vec3& d) { return Vec2(d.z(), -d.x()); }
+
+}  // namespace
+
+TrackRunningGear::TrackRunningGear(const VehicleParams& params, const Vec3& com_B,
+                                   std::vector<engine::MultiBodyLinkSpec>* links)
+    : tp_(params.tracks), params_(params), com_B_(com_B) {
+  n_rw_ = static_cast<int>(tp_.road_wheel_x_m.size());
+  VB_DEMAND(n_rw_ >= 2 && n_rw_ <= kMaxRoadWheels);
+  const double r_s = tp_.sprocket_radius_m;
+  // The belt, the road wheels and the idler wheel turn with the sprocket: their kinetic energy
+  // as sprocket spin inertia; the driveline's shafts as for one driven axle.
+  const double rw_ratio = r_s / tp_.road_wheel_radius_m, idler_ratio = r_s / tp_.idler_radius_m;
+  const double spin_inertia =
+      tp_.sprocket_inertia_kgm2 + tp_.belt_mass_kg * r_s * r_s +
+      n_rw_ * tp_.road_wheel_inertia_kgm2 * rw_ratio * rw_ratio +
+      tp_.idler_inertia_kgm2 * idler_ratio * idler_ratio +
+      DrivelineInertiaPerDrivenWheel(params.driveline, 1);
+  // Arm + road wheel as one link: COM on the arm between pivot and wheel centre.
+  const double m_arm = tp_.arm_mass_kg, m_rw = tp_.road_wheel_mass_kg, m_aw = m_arm + m_rw;
+  const Vec3 wheel_from_pivot = -tp_.arm_pivot_offset_B;
+  const Vec3 com_from_pivot = wheel_from_pivot * (0.5 * m_arm + m_rw) / m_aw;
+  for (int k = 0; k < n_rw_; ++k) wheel_from_com_L_[k] = wheel_from_pivot - com_from_pivot;
+
+  for (int s = 0; s < 2; ++s) {
+    Side& side = sides_[s];
+    side.sign = s == 0 ? 1.0 : -1.0;
+    const double y = side.sign * tp_.half_gauge_m;
+    engine::MultiBodyLinkSpec sprocket;
+    sprocket.parent = -1;
+    sprocket.joint = engine::JointType::kRevolute;
+    sprocket.axis_P = Vec3::UnitY();
+    sprocket.parent_com_to_joint_P = Vec3(tp_.sprocket_B.x(), y, tp_.sprocket_B.z()) - com_B;
+    sprocket.mass_kg = tp_.sprocket_mass_kg;
+    sprocket.inertia_kgm2 = Vec3(1.0, spin_inertia, 1.0);
+    side.sprocket_link = static_cast<int>(links->size());
+    links->push_back(sprocket);
+
+    for (int k = 0; k < n_rw_; ++k) {
+      engine::MultiBodyLinkSpec arm;
+      arm.parent = -1;
+      arm.joint = engine::JointType::kRevolute;
+      arm.axis_P = Vec3::UnitY();
+      const Vec3 wheel_B(tp_.road_wheel_x_m[k], y, tp_.road_wheel_z_m);
+      arm.parent_com_to_joint_P = wheel_B + tp_.arm_pivot_offset_B - com_B;
+      arm.joint_to_com_L = com_from_pivot;
+      arm.mass_kg = m_aw;
+      arm.inertia_kgm2 = tp_.arm_inertia_kgm2;
+      arm.limit_lower = -tp_.rebound_angle_rad - kArmHardLimitBeyondStops_rad;
+      arm.limit_upper = tp_.bump_angle_rad + kArmHardLimitBeyondStops_rad;
+      side.arm_link[k] = static_cast<int>(links->size());
+      links->push_back(arm);
+    }
+  }
+
+  // Belt at design: rest length from the tensioner's preload; torsion preloads that hold the
+  // arms at design under the static load on flat ground (unless the file gives one).
+  BeltLoop loop;
+  loop.n = n_rw_ + 2;
+  loop.centre[0] = Vec2(tp_.sprocket_B.x(), tp_.sprocket_B.z());
+  for (int k = 0; k < n_rw_; ++k) loop.centre[k + 1] = Vec2(tp_.road_wheel_x_m[k], tp_.road_wheel_z_m);
+  loop.centre[n_rw_ + 1] = Vec2(tp_.idler_B.x(), tp_.idler_B.z());
+  Vec2 grad[kMaxBeltWheels];
+  const double length = BeltLength(loop, grad);
+  const Vec2 idler_dir = Vec2(tp_.idler_B.x() < tp_.sprocket_B.x() ? -1.0 : 1.0, 0.0);
+  const double dl_ds = grad[n_rw_ + 1].dot(idler_dir);
+  VB_DEMAND(dl_ds > 1e-3);
+  const double tension = tp_.tensioner_preload_n / dl_ds;
+  belt_rest_length_m_ = length - tension / tp_.belt_stiffness_npm;
+
+  vehicle_mass_kg_ = params.chassis.mass_kg;
+  for (const engine::MultiBodyLinkSpec& l : *links) vehicle_mass_kg_ += l.mass_kg;
+  const double wheel_load_n = vehicle_mass_kg_ * kGravity / (2.0 * n_rw_);
+  for (int k = 0; k < n_rw_; ++k) {
+    if (tp_.torsion_preload_nm != 0.0) {
+      preload_nm_[k] = tp_.torsion_preload_nm;
+      continue;
+    }
+    // torque balance at angle 0: preload + belt pull + ground load + the arm's own weight = 0
+    const Vec2 rate = RotationRate(wheel_from_pivot);
+    const double belt = -tension * grad[k + 1].dot(rate);
+    const double ground = wheel_load_n * rate.y();
+    const double weight = -m_aw * kGravity * RotationRate(com_from_pivot).y();
+    preload_nm_[k] = -(belt + ground + weight);
+  }
+
+  // Rigid-contact samples per ground-run segment (at design length).
+  const double spacing = tp_.contact_spacing_m;
+  int offset = 0;
+  for (int k = 0; k + 1 < n_rw_ + 2; ++k) {
+    const Vec2 a = loop.centre[k], b = loop.centre[k + 1];
+    const double len = (b - a).norm();
+    samples_per_segment_[k] = std::max(1, static_cast<int>(std::ceil(len / spacing)));
+    sample_offset_[k] = offset;
+    offset += samples_per_segment_[k];
+  }
+  samples_per_side_ = offset;
+  state_.bristle_W.assign(static_cast<size_t>(2 * samples_per_side_), Vec3::Zero());
+  state_.tension_n[0] = state_.tension_n[1] = tension;
+  sprocket_speeds_.assign(2, 0.0);
+  sprocket_torques_.assign(2, 0.0);
+  driven_.assign(2, true);
+}
+
+void TrackRunningGear::Attach(engine::PhysicsWorld* world, engine::MultiBodyId body) {
+  world_ = world;
+  body_ = body;
+}
+
+double TrackRunningGear::SprocketSpeed(int side) const {
+  return world_->JointVelocity(body_, sides_[side].sprocket_link);
+}
+
+double TrackRunningGear::ArmAngle(int side, int wheel) const {
+  return world_->JointPosition(body_, sides_[side].arm_link[wheel]);
+}
+
+Vec3 TrackRunningGear::RoadWheelCentre(int s, int k) const {
+  const Pose arm = world_->LinkPose(body_, sides_[s].arm_link[k]);
+  return arm.position + arm.rotation * wheel_from_com_L_[k];
+}
+
+Vec3 TrackRunningGear::IdlerCentre_B(int s) const {
+  const double dir = tp_.idler_B.x() < tp_.sprocket_B.x() ? -1.0 : 1.0;
+  return Vec3(tp_.idler_B.x() + dir * state_.idler_travel_m[s], sides_[s].sign * tp_.half_gauge_m,
+              tp_.idler_B.z());
+}
+
+void TrackRunningGear::Synchronize(const DriverInputs& inputs, const terrain::Terrain& terrain,
+                                   soil::SoilContact* soil, double dt,
+                                   std::vector<WheelState>* wheels) {
+  // Powertrain: engine through the gearbox and an open differential to the two sprockets.
+  for (int s = 0; s < 2; ++s) sprocket_speeds_[s] = SprocketSpeed(s);
+  const Pose com = world_->BasePose(body_);
+  const double ground_speed =
+      world_->BaseLinearVelocity(body_).dot(com.rotation * Vec3::UnitX());
+  ComputeWheelTorques(params_, inputs.throttle, sprocket_speeds_, driven_, ground_speed, dt,
+                      &state_.powertrain, &sprocket_torques_);
+  for (int s = 0; s < 2; ++s) SynchronizeSide(s, inputs, terrain, soil, dt, wheels);
+}
+
+void TrackRunningGear::SynchronizeSide(int s, const DriverInputs& inputs,
+                                       const terrain::Terrain& terrain, soil::SoilContact* soil,
+                                       double dt, std::vector<WheelState>* wheels) {
+  const Side& side = sides_[s];
+  const Pose com = world_->BasePose(body_);
+  const Mat3 R = com.rotation.toRotationMatrix();
+  const Vec3 ref_W = com.position - R * com_B_;
+  const Vec3 up_W = R.col(2);
+  const Vec3 lat_W = R.col(1);
+  const Vec3 v_com = world_->BaseLinearVelocity(body_);
+  const Vec3 w_com = world_->BaseAngularVelocity(body_);
+  const double y = side.sign * tp_.half_gauge_m;
+  const int n_pts = n_rw_ + 2;
+  const int idler = n_rw_ + 1;
+
+  // Wheel centres (world and chassis frame).
+  Vec3 centre_W[kMaxBeltWheels];
+  centre_W[0] = ref_W + R * Vec3(tp_.sprocket_B.x(), y, tp_.sprocket_B.z());
+  for (int k = 0; k < n_rw_; ++k) centre_W[k + 1] = RoadWheelCentre(s, k);
+  centre_W[idler] = ref_W + R * IdlerCentre_B(s);
+  BeltLoop loop;
+  loop.n = n_pts;
+  for (int i = 0; i < n_pts; ++i) {
+    const Vec3 c_B = R.transpose() * (centre_W[i] - ref_W);
+    loop.centre[i] = Vec2(c_B.x(), c_B.z());
+  }
+
+  // Tensioner and belt: the idler carrier is light and stiffly held, so it is solved
+  // quasi-statically (backward Euler on the massless carrier with its damper): tensioner force
+  // = belt pull on the idler, f0 - k s - c (s - s_old) / dt = T dL/ds, T = k_b (L(s) - L0) >= 0,
+  // L linear in s about the current travel.
+  Vec2 grad[kMaxBeltWheels];
+  const Vec2 idler_dir(tp_.idler_B.x() < tp_.sprocket_B.x() ? -1.0 : 1.0, 0.0);
+  {
+    const double s_old = state_.idler_travel_m[s];
+    const double l_old = BeltLength(loop, grad);
+    const double g = grad[idler].dot(idler_dir);
+    const double kt = tp_.tensioner_stiffness_npm, kb = tp_.belt_stiffness_npm;
+    const double cdt = tp_.tensioner_damping_nspm / dt;
+    const double slack0 = l_old - g * s_old - belt_rest_length_m_;  // belt stretch at s = 0
+    double s_new = (tp_.tensioner_preload_n + cdt * s_old - kb * g * slack0) / (kt + cdt + kb * g * g);
+    if (slack0 + g * s_new < 0.0) s_new = (tp_.tensioner_preload_n + cdt * s_old) / (kt + cdt);
+    s_new = std::clamp(s_new, -kIdlerTravel_m, kIdlerTravel_m);
+    state_.idler_travel_m[s] = s_new;
+    centre_W[idler] = ref_W + R * IdlerCentre_B(s);
+    loop.centre[idler] += (s_new - s_old) * idler_dir;
+  }
+  const double length = BeltLength(loop, grad);
+  const double tension = tp_.belt_stiffness_npm * std::max(0.0, length - belt_rest_length_m_);
+  state_.tension_n[s] = tension;
+  const Vec2 pivot_offset(tp_.arm_pivot_offset_B.x(), tp_.arm_pivot_offset_B.z());
+  const double m_aw = tp_.arm_mass_kg + tp_.road_wheel_mass_kg;
+  const double lever = std::hypot(pivot_offset.x(), pivot_offset.y());
+  // damping implicit on the arm's inertia about the pivot plus its share of the chassis
+  const double arm_inertia = m_aw * lever * lever + tp_.arm_inertia_kgm2.y();
+  for (int k = 0; k < n_rw_; ++k) {
+    const int link = side.arm_link[k];
+    const Vec2 pivot = Vec2(tp_.road_wheel_x_m[k], tp_.road_wheel_z_m) + pivot_offset;
+    const Vec2 d = loop.centre[k + 1] - pivot;
+    const double belt = -tension * grad[k + 1].dot(Vec2(d.y(), -d.x()));
+    const double q = world_->JointPosition(body_, link);
+    const double qd = world_->JointVelocity(body_, link);
+    double torque = preload_nm_[k] - tp_.torsion_stiffness_nmprad * q -
+                    ImplicitDamping(tp_.torsion_damping_nmsprad, dt, arm_inertia) * qd + belt;
+    if (q > tp_.bump_angle_rad) torque -= tp_.stop_stiffness_nmprad * (q - tp_.bump_angle_rad);
+    if (q < -tp_.rebound_angle_rad) {
+      torque += tp_.stop_stiffness_nmprad * (-tp_.rebound_angle_rad - q);
+    }
+    world_->AddJointForce(body_, link, torque);
+  }
+  // Ground run: bottom points and their structure velocities.
+  const double h = tp_.shoe_height_m;
+  run_[0].p_W = centre_W[0] - (tp_.sprocket_radius_m + h) * up_W;
+  run_[0].v_W = v_com + w_com.cross(run_[0].p_W - com.position);
+  for (int k = 0; k < n_rw_; ++k) {
+    RunPoint& rp = run_[k + 1];
+    rp.p_W = centre_W[k + 1] - (tp_.road_wheel_radius_m + h) * up_W;
+    rp.v_W = world_->LinkPointVelocity(body_, side.arm_link[k], rp.p_W);
+  }
+  run_[idler].p_W = centre_W[idler] - (tp_.idler_radius_m + h) * up_W;
+  run_[idler].v_W = v_com + w_com.cross(run_[idler].p_W - com.position);
+  Vec3 seg_fwd[kMaxBeltWheels];
+  for (int k = 0; k + 1 < n_pts; ++k) {
+    const Vec3 d = run_[k].p_W - run_[k + 1].p_W;
+    const double n = d.norm();
+    seg_fwd[k] = n > 1e-9 ? Vec3(d / n) : Vec3(R.col(0));
+  }
+  for (int i = 0; i < n_pts; ++i) {
+    Vec3 t = i == 0 ? seg_fwd[0] : i == n_pts - 1 ? seg_fwd[n_pts - 2]
+                                                  : Vec3(seg_fwd[i - 1] + seg_fwd[i]);
+    run_[i].tangent_W = t.normalized();
+    run_[i].force_W.setZero();
+    run_[i].along_W.setZero();
+  }
+  const double omega = world_->JointVelocity(body_, side.sprocket_link);
+  const double belt_speed = omega * tp_.sprocket_radius_m;  // the ground run moves back at this
+
+  // Soil first: it claims the segments over deformable ground.
+  bool on_soil[kMaxBeltWheels] = {};
+  double sinkage[kMaxBeltWheels] = {};
+  terrain::SurfaceClass seg_surface[kMaxBeltWheels] = {};
+  // The contact acts on the light arms first: the stiff and damping terms are made implicit
+  // (and the soil's stiffness capped) on the unsprung mass along the run, not on the chassis.
+  const double side_mass = n_rw_ * (tp_.arm_mass_kg + tp_.road_wheel_mass_kg);
+  double belt_force = 0.0;   // ground force along the belt, carried to the sprocket
+  if (soil != nullptr) {
+    soil::TrackSoilInput in;
+    in.track_id = s;
+    in.n_points = n_pts;
+    for (int i = 0; i < n_pts; ++i) {
+      in.points_W[i] = run_[i].p_W;
+      in.velocities_W[i] = run_[i].v_W - belt_speed * run_[i].tangent_W;
+    }
+    in.lateral_W = lat_W;
+    in.width_m = tp_.shoe_width_m;
+    in.mass_kg = side_mass;
+    const soil::TrackSoilOutput out = soil->TrackContact(in, dt);
+    for (int i = 0; i < n_pts; ++i) {
+      // the soil's pressure acts along the belt's normal, its shear in the belt's plane: the
+      // shear's component along the belt is what the belt carries
+      const Vec3& f = out.point_force_W[i];
+      const double along = f.dot(run_[i].tangent_W);
+      belt_force += along;
+      run_[i].along_W += along * run_[i].tangent_W;
+      run_[i].force_W += f - along * run_[i].tangent_W;
+      sinkage[i] = out.point_sinkage_m[i];
+    }
+    for (int k = 0; k + 1 < n_pts; ++k) {
+      on_soil[k] = out.segment_on_soil[k];
+      seg_surface[k] = out.segment_surface[k];
+    }
+  }
+
+  // Rigid ground: samples along the other segments.
+  double total_len = 0.0;
+  for (int k = 0; k + 1 < n_pts; ++k) total_len += (run_[k].p_W - run_[k + 1].p_W).norm();
+  for (int k = 0; k + 1 < n_pts; ++k) {
+    const int n_s = samples_per_segment_[k];
+    Vec3* bristles = &state_.bristle_W[static_cast<size_t>(s * samples_per_side_ + sample_offset_[k])];
+    if (on_soil[k]) {
+      for (int m = 0; m < n_s; ++m) bristles[m].setZero();
+      continue;
+    }
+    const Vec3& a = run_[k].p_W;
+    const Vec3& b = run_[k + 1].p_W;
+    const double len = (b - a).norm();
+    const double ell = len / n_s;
+    const double sample_mass = side_mass * ell / std::max(total_len, 1e-6);
+    const Vec3 va = run_[k].v_W - belt_speed * run_[k].tangent_W;
+    const Vec3 vb = run_[k + 1].v_W - belt_speed * run_[k + 1].tangent_W;
+    for (int m = 0; m < n_s; ++m) {
+      const double t = (m + 0.5) / n_s;
+      const Vec3 p = (1.0 - t) * a + t * b;
+      const terrain::SurfacePoint g = terrain.Query(p.x(), p.y());
+      if (m == n_s / 2) seg_surface[k] = g.surface;
+      const double depth = (g.height_m - p.z()) * g.normal_W.z();
+      if (!(depth > 0.0)) {
+        bristles[m].setZero();
+        continue;
+      }
+      const Vec3& n = g.normal_W;
+      const Vec3 v = (1.0 - t) * va + t * vb;
+      const double vn = v.dot(n);
+      const double c_n = ImplicitDamping(tp_.normal_damping_nspm2 * ell, dt, sample_mass);
+      const double fn = std::max(0.0, tp_.normal_stiffness_npm2 * ell * depth - c_n * vn);
+      const Vec3 vt = v - vn * n;
+      Vec3& z = bristles[m];
+      z += vt * dt;
+      z -= z.dot(n) * n;
+      const double k_b = tp_.bristle_stiffness_npm2 * ell;
+      const double c_b = ImplicitDamping(tp_.bristle_damping_nspm2 * ell, dt, sample_mass);
+      Vec3 ft = -k_b * z - c_b * vt;
+      const double mu = std::min(tp_.friction, g.friction);
+      const double limit = mu * fn;
+      const double ft_norm = ft.norm();
+      if (ft_norm > limit) {
+        ft *= limit / ft_norm;
+        z = -ft / k_b;   // the bristle slides at the Coulomb limit
+      }
+      // friction along the belt is carried by the belt to the sprocket; the pressure (along the
+      // ground normal) and the side friction go to the structure under the point
+      const double along = ft.dot(seg_fwd[k]);
+      belt_force += along;
+      const Vec3 along_W = along * seg_fwd[k];
+      const Vec3 rest = fn * n + ft - along_W;
+      run_[k].force_W += (1.0 - t) * rest;
+      run_[k + 1].force_W += t * rest;
+      run_[k].along_W += (1.0 - t) * along_W;
+      run_[k + 1].along_W += t * along_W;
+    }
+  }
+
+  // Apply: along the belt to the chassis and against the sprocket, the rest to the body under
+  // the point.
+  for (int i = 0; i < n_pts; ++i) {
+    const RunPoint& rp = run_[i];
+    const Vec3& rest = rp.force_W;
+    world_->ApplyBaseForce(body_, rp.along_W, rp.p_W);
+    if (i == 0 || i == idler) {   // sprocket and idler: on the chassis
+      world_->ApplyBaseForce(body_, rest, rp.p_W);
+    } else {
+      world_->ApplyLinkForce(body_, side.arm_link[i - 1], rest, rp.p_W);
+    }
+  }
+  thrust_n_[s] = belt_force;
+  world_->AddJointForce(body_, side.sprocket_link,
+                        sprocket_torques_[s] - belt_force * tp_.sprocket_radius_m);
+  // Brakes (service and steering): an implicit velocity motor on the sprocket.
+  const double steer_brake = s == 0 ? std::max(0.0, inputs.steering) : std::max(0.0, -inputs.steering);
+  const double braking = std::min(1.0, inputs.braking + steer_brake);
+  world_->SetJointVelocityMotor(body_, side.sprocket_link, 0.0, braking * tp_.brake_torque_nm);
+
+  // Road-wheel records.
+  for (int k = 0; k < n_rw_; ++k) {
+    WheelState& ws = (*wheels)[static_cast<size_t>(2 * k + s)];
+    const Vec3& f = run_[k + 1].force_W;
+    ws.normal_force_n = std::max(0.0, f.dot(up_W));
+    ws.in_contact = ws.normal_force_n > 0.0;
+    const bool soil_here = on_soil[k] || on_soil[k + 1];
+    ws.surface = on_soil[k + 1] ? seg_surface[k + 1] : seg_surface[k];
+    ws.sinkage_m = soil_here ? sinkage[k + 1] : 0.0;
+  }
+}
+
+void TrackRunningGear::UpdateWheelStates(std::vector<WheelState>* wheels) const {
+  const Pose com = world_->BasePose(body_);
+  const Vec3 fwd = com.rotation * Vec3::UnitX();
+  for (int s = 0; s < 2; ++s) {
+    const double u = SprocketSpeed(s) * tp_.sprocket_radius_m;
+    for (int k = 0; k < n_rw_; ++k) {
+      WheelState& ws = (*wheels)[static_cast<size_t>(2 * k + s)];
+      const int link = sides_[s].arm_link[k];
+      ws.center_W = RoadWheelCentre(s, k);
+      ws.spin_radps = u / tp_.road_wheel_radius_m;
+      const double q = world_->JointPosition(body_, link);
+      ws.suspension_travel_m = q * std::abs(tp_.arm_pivot_offset_B.x());
+      const double v = world_->LinkPointVelocity(body_, link, ws.center_W).dot(fwd);
+      ws.longitudinal_slip = (u - v) / std::max({std::abs(u), std::abs(v), 0.1});
+    }
+  }
+}
+
+void TrackRunningGear::AddObstacleContacts(const terrain::ObstacleField& obstacles,
+                                           terrain::ContactScratch* scratch,
+                                           std::vector<terrain::BodyContact>* contacts) {
+  const Pose com = world_->BasePose(body_);
+  const Vec3 axis = com.rotation * Vec3::UnitY();
+  const double r = tp_.road_wheel_radius_m + tp_.shoe_height_m;
+  for (int s = 0; s < 2; ++s) {
+    for (int k = 0; k < n_rw_; ++k) {
+      contacts->clear();
+      terrain::WheelObstacleContacts(RoadWheelCentre(s, k), axis, r, 0.5 * tp_.shoe_width_m,
+                                     obstacles, tp_.friction, kMaxObstacleContactsPerWheel,
+                                     scratch, contacts);
+      for (const terrain::BodyContact& c : *contacts) {
+        world_->AddContact({body_, sides_[s].arm_link[k], c.point_W, c.normal_W, c.depth_m,
+                            c.friction, c.obstacle_tag});
+      }
+    }
+  }
+}
+
+}  // namespace vb::vehicles
