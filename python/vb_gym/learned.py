@@ -88,3 +88,62 @@ def features(obs: dict[str, np.ndarray]) -> np.ndarray:
     out = np.clip(np.concatenate([s, e], axis=1), np.float32(-CLIP), np.float32(CLIP))
     out = out.astype(np.float32)
     return out[0] if single else out
+
+
+def load_policy(path: str):
+    """The exported policy (data/policies/<system>.safetensors) as a numpy function
+    features (n, 76) -> clipped actions (n, 2), float32. Needs the safetensors package."""
+    from safetensors.numpy import load_file
+    from safetensors import safe_open
+
+    with safe_open(str(path), "np") as f:
+        meta = f.metadata()
+    if meta.get("format") != "vb-policy-1":
+        raise ValueError(f"{path}: metadata format {meta.get('format')!r} is not 'vb-policy-1'")
+    tensors = load_file(str(path))
+    indices = sorted(int(k.split(".")[1]) for k in tensors if k.endswith(".weight"))
+    acts = meta["policy.activations"].split(",")
+    if len(acts) != len(indices):
+        raise ValueError(f"{path}: {len(indices)} Linear layers but {len(acts)} activations")
+    layers = [(tensors[f"policy.{i}.weight"], tensors[f"policy.{i}.bias"], a)
+              for i, a in zip(indices, acts)]
+
+    def forward(x: np.ndarray) -> np.ndarray:
+        h = np.asarray(x, np.float32)
+        for w, b, a in layers:
+            h = h @ w.T + b
+            if a == "tanh":
+                h = np.tanh(h)
+            elif a == "relu":
+                h = np.maximum(h, 0)
+            elif a != "none":
+                raise ValueError(f"{path}: activation {a!r} not supported here")
+        return np.clip(h, -1.0, 1.0).astype(np.float32)
+
+    return forward
+
+
+def _policy_factory(system: str):
+    def make(env: Any):
+        """vb_gym.evaluate factory: the committed policy data/policies/<system>.safetensors on
+        an env configured as learned_env_config (--control-period 0.1 --crops elevation:16:1)."""
+        from .config import REPO_ROOT
+
+        cfg = env.config
+        if cfg.action != "speed" or cfg.flatten or abs(cfg.control_period_s - DECISION_PERIOD_S) \
+                > 1e-12 or tuple(cfg.crops) != (CROP,):
+            raise ValueError(f"{system}: needs action speed, Dict observations, control period "
+                             f"{DECISION_PERIOD_S} s and crops elevation:16:1")
+        forward = load_policy(REPO_ROOT / "data" / "policies" / f"{system}.safetensors")
+
+        def policy(obs: dict[str, np.ndarray]) -> np.ndarray:
+            return forward(features(obs)[None])[0]
+
+        return policy
+
+    return make
+
+
+rl_policy = _policy_factory("rl")
+mcl_policy = _policy_factory("mcl")
+acl_policy = _policy_factory("acl")

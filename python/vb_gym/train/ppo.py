@@ -28,6 +28,7 @@ from ..learned import CLIP, NUM_FEATURES, features, learned_env_config
 from ..vector import VbVectorEnv
 from ..env import draw_episode
 from ..protocol import ServerCrashed, VbGymError
+from ..reward import RewardWeights
 from .curricula import ManualCurriculum, PrioritizedLevelReplay, UniformSampler
 from .worlds import training_worlds
 
@@ -49,6 +50,12 @@ HYPER = {
 }
 NET_ARCH = {"pi": [64, 64], "vf": [64, 64]}   # original: 18->64->128->64->32 extractor + these
 LOG_STD_INIT = -0.5
+# The reward: vb_gym.reward's terms (the original's), with the stall penalty 40x smaller
+# (-0.25 instead of -10 per 5 ms below 2 m/s of progress, -5 per 0.1 s decision). At the
+# original's weight a decision without progress costs -200, ten times what full-speed progress
+# earns (+20), so ending an episode early (stuck -300, rollover -600) pays better than driving:
+# the first runs here lost ~-120 000 per 60 s timeout. docs/learning.md "Reward".
+STALL_PER_REFERENCE_STEP = -0.25
 
 
 class LevelVectorEnv(VbVectorEnv):
@@ -283,8 +290,8 @@ def main(argv: Sequence[str] | None = None) -> None:
         sampler = ManualCurriculum(worlds, NUM_PAIRS, rng, args.timesteps)
     else:
         sampler = PrioritizedLevelReplay(worlds, NUM_PAIRS, rng)
-    config = learned_env_config([w.file for w in worlds], episode_cache=4,
-                                system=args.system)
+    config = learned_env_config([w.file for w in worlds], episode_cache=4, system=args.system,
+                                reward=RewardWeights(stall=STALL_PER_REFERENCE_STEP))
     learned_env = make_vec_env(args.workers, config, sampler, out / "episodes.csv")
     learned_env.seed(args.seed)
     venv = VecNormalize(learned_env, norm_obs=False, norm_reward=True, gamma=HYPER["gamma"])
@@ -321,7 +328,7 @@ def main(argv: Sequence[str] | None = None) -> None:
                "cpu_s_trainer": round(cpu_self, 1), "cpu_s_servers": round(server_cpu, 1),
                "stopped_by_wall_budget": callback.stopped_by_wall, "workers": args.workers,
                "worlds": len(worlds), "world_seeds": [worlds[0].seed, worlds[-1].seed],
-               "hyperparameters": HYPER, "net_arch": NET_ARCH, "log_std_init": LOG_STD_INIT,
+               "hyperparameters": HYPER, "stall_reward": STALL_PER_REFERENCE_STEP, "net_arch": NET_ARCH, "log_std_init": LOG_STD_INIT,
                "sampler": sampler.name, "curriculum_switches": switches, **curve}
     if isinstance(sampler, PrioritizedLevelReplay):
         summary["plr"] = {"levels": len(sampler.levels), "seen": int(sampler.seen.sum()),
