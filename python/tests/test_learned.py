@@ -122,3 +122,16 @@ def test_plr_replays_high_score_levels():
     assert p[plr.index[first[0]]] > 0.7       # rank 1 with temperature 0.1, 30 % staleness
     draws = [plr.sample() for _ in range(400)]
     assert draws.count(first[0]) > 100
+
+
+@pytest.mark.parametrize("system", ["rl", "mcl", "acl"])
+def test_numpy_policy_equals_the_torch_fixture(system):
+    pytest.importorskip("safetensors")
+    from safetensors.numpy import load_file
+
+    from vb_gym.config import REPO_ROOT
+    from vb_gym.learned import load_policy
+
+    forward = load_policy(REPO_ROOT / "data" / "policies" / f"{system}.safetensors")
+    fx = load_file(str(REPO_ROOT / "test" / "data" / "learned" / f"forward_{system}.safetensors"))
+    np.testing.assert_allclose(forward(fx["inputs"]), np.clip(fx["outputs"], -1, 1), atol=1e-5)
