@@ -34,3 +34,18 @@ def test_tiny_training_exports_a_policy(tmp_path, vb_gym_bin, system):
         b = np.clip(net(torch.from_numpy(x)).numpy(), -1, 1)
     np.testing.assert_allclose(a, b, atol=1e-6)
     assert (tmp_path / "learning_curve.png").stat().st_size > 1000
+
+
+def test_training_is_reproducible_from_its_seed(tmp_path, vb_gym_bin):
+    from vb_gym.train.ppo import main
+
+    for run in ("a", "b"):
+        main(["acl", "--timesteps", "512", "--workers", "2", "--worlds-per-combo", "1",
+              "--seed", "3", "--out", str(tmp_path / run)])
+    a = (tmp_path / "a" / "policy.safetensors").read_bytes()
+    b = (tmp_path / "b" / "policy.safetensors").read_bytes()
+    assert a == b
+    ea = (tmp_path / "a" / "episodes.csv").read_text().splitlines()
+    eb = (tmp_path / "b" / "episodes.csv").read_text().splitlines()
+    strip = [lambda line: line.split(",")[:2] + line.split(",")[3:]]   # drop wall_s
+    assert [strip[0](x) for x in ea] == [strip[0](x) for x in eb]
