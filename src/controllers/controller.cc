@@ -4,17 +4,18 @@
 #include "vb/controllers/controller.h"
 
 #include "vb/controllers/eh_controller.h"
+#include "vb/controllers/learned_controller.h"
 #include "vb/controllers/mppi_controller.h"
 #include "vb/controllers/pid_controller.h"
+#include "vb/engine/error.h"
 
 namespace vb::controllers {
 
 std::vector<std::string> ControllerNames() {
-  return {"pid", "eh", "mppi", "eh_original", "mppi_original"};
+  return {"pid", "eh", "mppi", "rl", "mcl", "acl", "eh_original", "mppi_original", "straight"};
 }
 
 std::unique_ptr<Controller> MakeController(const std::string& name, const nn::ModelStore* models) {
-  (void)models;   // no learned system registered yet
   if (name == "pid") return std::make_unique<PidController>();
   if (name == "eh") return std::make_unique<EhController>();
   if (name == "mppi") return std::make_unique<MppiController>();
@@ -24,6 +25,20 @@ std::unique_ptr<Controller> MakeController(const std::string& name, const nn::Mo
     return std::make_unique<EhController>(p, name);
   }
   if (name == "mppi_original") return std::make_unique<MppiController>(MppiOriginalParams(), name);
+  if (name == "straight") {
+    PidParams p;
+    p.straight_to_goal = true;
+    return std::make_unique<PidController>(p, name);
+  }
+  if (name == "rl" || name == "mcl" || name == "acl") {
+    // The policies trained in vb (docs/learning.md), data/policies/<name>.safetensors.
+    if (models == nullptr) {
+      throw InputError("", 0, "system",
+                       "'" + name + "' is a learned system: it needs a model store for its weights");
+    }
+    return std::make_unique<LearnedController>(name,
+                                               models->Load("policies/" + name + ".safetensors"));
+  }
   return nullptr;
 }
 

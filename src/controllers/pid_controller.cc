@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace vb::controllers {
 
@@ -23,7 +24,8 @@ void SpeedControl(double target_mps, double speed_mps, double kp, Command* comma
   }
 }
 
-PidController::PidController(const PidParams& params) : params_(params) {}
+PidController::PidController(const PidParams& params, std::string name)
+    : params_(params), name_(std::move(name)) {}
 
 ObservationConfig PidController::observation_config() const {
   ObservationConfig c;
@@ -40,7 +42,12 @@ void PidController::Reset(const EpisodeContext& context) {
 Command PidController::Update(const Observation& obs) {
   // Steering: proportional to the heading error to the look-ahead point, rate limited per call,
   // then clamped to the command range.
-  steering_ = RateLimitedSteering(params_.steering_kp * obs.heading_error_rad, steering_,
+  double error = obs.heading_error_rad;
+  if (params_.straight_to_goal) {
+    const Vec2 d = obs.goal_m - obs.position_W.head<2>();
+    error = WrapAngle(std::atan2(d.y(), d.x()) - obs.rpy.yaw_rad);
+  }
+  steering_ = RateLimitedSteering(params_.steering_kp * error, steering_,
                                   params_.steering_rate_per_s * context_.control_period_s);
   Command command;
   command.steering = steering_;

@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include "io/model_store.h"
 #include "vb/controllers/controller.h"
 
 namespace vb::controllers {
@@ -32,12 +33,26 @@ Observation ObsAt(double t, const Vec2& local_goal, double yaw, double speed) {
 
 TEST(PidControllerTest, RegistryKnowsPid) {
   EXPECT_EQ(ControllerNames(),
-            (std::vector<std::string>{"pid", "eh", "mppi", "eh_original", "mppi_original"}));
+            (std::vector<std::string>{"pid", "eh", "mppi", "rl", "mcl", "acl", "eh_original",
+                                      "mppi_original", "straight"}));
+  const io::DataDirModelStore models(VB_SOURCE_DIR "/data");   // the learned systems' weights
   for (const std::string& name : ControllerNames()) {
-    ASSERT_NE(MakeController(name), nullptr) << name;
-    EXPECT_EQ(MakeController(name)->name(), name);
+    ASSERT_NE(MakeController(name, &models), nullptr) << name;
+    EXPECT_EQ(MakeController(name, &models)->name(), name);
   }
   EXPECT_EQ(MakeController("tal"), nullptr);
+}
+
+TEST(PidControllerTest, StraightSteersAtTheGoalNotTheLocalGoal) {
+  std::unique_ptr<Controller> straight = MakeController("straight");
+  std::unique_ptr<Controller> pid = MakeController("pid");
+  straight->Reset(Context());
+  pid->Reset(Context());
+  Observation o = ObsAt(0.0, Vec2(5.0, 5.0), 0.0, 0.0);   // local goal ahead-left
+  o.goal_m = Vec2(50.0, -50.0);                              // goal ahead-right
+  EXPECT_NEAR(pid->Update(o).steering, 0.05, 1e-12);        // rate limit 0.05 per 5 ms
+  EXPECT_NEAR(straight->Update(o).steering, -0.05, 1e-12);
+  EXPECT_EQ(straight->name(), "straight");
 }
 
 TEST(PidControllerTest, GoalToTheLeftSteersLeftAndRightSteersRight) {

@@ -31,8 +31,10 @@ options:
   --vehicle NAME     vehicle description $VB_DATA_DIR/vehicles/NAME.yaml (required);
                      VB_DATA_DIR defaults to share/vb/data next to this program's bin/
   --system NAME      mobility system (default: pid): pid, eh, mppi (the paper's classical
-                     baselines), eh_original, mppi_original (the original code's variants,
-                     docs/baselines.md)
+                     baselines), rl, mcl, acl (policies trained in vb, weights from
+                     $VB_DATA_DIR/policies; docs/learning.md), eh_original, mppi_original (the
+                     original code's variants, docs/baselines.md), straight (PID steering at the
+                     goal, not the path: a reference)
   --soil NAME        soil parameters $VB_DATA_DIR/soils/NAME.yaml for tasks with mud, sand or
                      snow patches (default: verti_bench, the original's three soils)
   --perception NAME  what the system sees: none (ground truth, default), a preset of

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <memory>
+#include <string>
 
 #include "vb/controllers/controller.h"
 
@@ -17,6 +18,9 @@ struct PidParams {
   double speed_kp = 1.0;
   double lookahead_m = 10.0;             // multiplied by the environment scale
   double replan_period_s = 0.1;          // global path replanning (observation builder)
+  // Steer at the final goal instead of the local goal on the A* path (the "straight" reference
+  // system: what a policy must beat to have learned anything about the terrain or obstacles).
+  bool straight_to_goal = false;
 };
 
 // The speed controller shared by the path followers (Chrono's ChSpeedController with
@@ -30,8 +34,8 @@ double RateLimitedSteering(double target, double previous, double max_change);
 
 class PidController : public Controller {
  public:
-  explicit PidController(const PidParams& params = PidParams());
-  std::string name() const override { return "pid"; }
+  explicit PidController(const PidParams& params = PidParams(), std::string name = "pid");
+  std::string name() const override { return name_; }
   ObservationConfig observation_config() const override;
   void Reset(const EpisodeContext& context) override;
   Command Update(const Observation& obs) override;
@@ -39,6 +43,7 @@ class PidController : public Controller {
 
  private:
   PidParams params_;
+  std::string name_;
   EpisodeContext context_;
   double steering_ = 0.0;
 };

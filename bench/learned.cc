@@ -1,0 +1,116 @@
+// Cost of the learned baselines (RL, MCL, ACL; docs/learning.md) per decision and per trial.
+//  1. One decision: the 76 features from an observation + the policy's forward pass (Eigen,
+//     float32), on the observations of a real PID trial (pair 0 of the first task, built with the
+//     learned systems' observation config); median and p90 of the thread's CPU time per call.
+//  2. The observation itself (builder with the 16 x 16 elevation crop) is measured by
+//     vb_bench_observation; whole trials (pairs 0-2 of each TASK) of PID, RL, MCL and ACL:
+//     median real-time factor and the controller's share of the wall time.
+//   usage: vb_bench_learned [TASK...]   (default: tasks/env042)
+#include <time.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "io/model_store.h"
+#include "io/soil_io.h"
+#include "io/task_io.h"
+#include "io/vehicle_io.h"
+#include "vb/controllers/learned_controller.h"
+#include "vb/engine/runner/episode.h"
+
+namespace {
+
+double ThreadCpuSeconds() {
+  timespec ts;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
+double Quantile(std::vector<double> v, double q) {
+  std::sort(v.begin(), v.end());
+  return v[static_cast<size_t>(q * (v.size() - 1))];
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace vb;
+  std::vector<std::string> tasks;
+  for (int i = 1; i < argc; ++i) tasks.push_back(argv[i]);
+  if (tasks.empty()) tasks.push_back(std::string(VB_SOURCE_DIR) + "/tasks/env042.yaml");
+  const vehicles::VehicleParams hmmwv = io::LoadVehicle(VB_SOURCE_DIR "/data/vehicles/hmmwv.yaml");
+  const io::DataDirModelStore store(VB_SOURCE_DIR "/data");
+  std::printf("command: vb_bench_learned");
+  for (const std::string& t : tasks) std::printf(" %s", t.c_str());
+  std::printf("\n\n");
+
+  {
+    const terrain::TaskSpec task = io::LoadTask(tasks[0]);
+    runner::Episode episode(task, hmmwv, runner::EpisodeRules());
+    std::unique_ptr<controllers::Controller> pid = controllers::MakeController("pid");
+    episode.SetObservationConfig(controllers::LearnedObservationConfig());
+    episode.Reset(runner::TrialSpec());
+    pid->Reset(episode.context());
+    std::vector<controllers::Observation> obs;
+    while (!episode.Done()) {
+      const controllers::Observation& o = episode.Observe();
+      obs.push_back(o);
+      obs.back().global_path_m = nullptr;
+      episode.Step(pid->Update(o));
+    }
+    std::printf("per decision (features + forward), %zu observations of a PID trial:\n",
+                obs.size());
+    for (const char* system : {"rl", "mcl", "acl"}) {
+      const controllers::LearnedController c(system,
+                                             store.Load(std::string("policies/") + system +
+                                                        ".safetensors"));
+      std::array<float, controllers::kLearnedFeatures> f{};
+      std::vector<double> cpu, wall;
+      float sink = 0.0f;
+      for (int rep = 0; rep < 5; ++rep) {
+        for (const controllers::Observation& o : obs) {
+          const double c0 = ThreadCpuSeconds();
+          const auto w0 = std::chrono::steady_clock::now();
+          controllers::LearnedFeatures(o, 0.0, f.data());
+          const std::array<float, 2> a = c.Act(f.data());
+          wall.push_back(
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count());
+          cpu.push_back(ThreadCpuSeconds() - c0);
+          sink += a[0];
+        }
+      }
+      std::printf("  %-4s median CPU %.2f us, p90 %.2f us; wall median %.2f us (checksum %.3f)\n",
+                  system, 1e6 * Quantile(cpu, 0.5), 1e6 * Quantile(cpu, 0.9),
+                  1e6 * Quantile(wall, 0.5), sink);
+    }
+  }
+
+  std::printf("\nwhole trials, pairs 0-2 (median RTF; controller share of wall time):\n");
+  for (const std::string& path : tasks) {
+    const terrain::TaskSpec task = io::LoadTask(path);
+    const std::optional<soil::SoilConfig> soil =
+        io::LoadSoilIfNeeded(task, VB_SOURCE_DIR "/data/soils/verti_bench.yaml");
+    std::printf("  %s:", task.name.c_str());
+    for (const char* system : {"pid", "rl", "mcl", "acl"}) {
+      std::vector<double> rtf, share;
+      for (int pair = 0; pair < 3; ++pair) {
+        runner::StepTimings timings;
+        runner::EpisodeRules rules;
+        rules.timings = &timings;
+        runner::TrialSpec spec;
+        spec.pair_index = pair;
+        spec.system = system;
+        const runner::TrialResult r = runner::RunTrial(task, hmmwv, spec, rules, soil ? &*soil : nullptr, &store);
+        rtf.push_back(r.real_time_factor);
+        share.push_back(r.wall_time_s > 0 ? timings.controller_s / r.wall_time_s : 0.0);
+      }
+      std::printf("  %s %.1fx (%.1f %%)", system, Quantile(rtf, 0.5), 100 * Quantile(share, 0.5));
+    }
+    std::printf("\n");
+  }
+  return 0;
+}

@@ -1,0 +1,3 @@
+from .ppo import main
+
+main()
