@@ -3,8 +3,9 @@
 //     TNT's traversability map) on a benchmark world, from the observations of a real PID trial
 //     (one every 0.05 s, the planners' rate); median and 90th percentile of wall and CPU time,
 //     beside the classical MPPI.
-//  2. Whole trials (pair 0) of each on each TASK: real-time factor and outcome.
-//   usage: vb_bench_hybrid [TASK...]   (default: tasks/env008, env017, env026)
+//  2. With --trials: whole trials (pair 0) of each on each TASK: real-time factor and outcome
+//     (vb_batch's index.csv has the same per trial: wall_time_s, real_time_factor).
+//   usage: vb_bench_hybrid [--trials] [TASK...]   (default: tasks/env008, env017, env026)
 #include <time.h>
 
 #include <algorithm>
@@ -41,7 +42,14 @@ double Quantile(std::vector<double> v, double q) {
 int main(int argc, char** argv) {
   using namespace vb;
   std::vector<std::string> tasks;
-  for (int i = 1; i < argc; ++i) tasks.push_back(argv[i]);
+  bool trials = false;
+  for (int i = 1; i < argc; ++i) {
+    if (std::string(argv[i]) == "--trials") {
+      trials = true;
+    } else {
+      tasks.push_back(argv[i]);
+    }
+  }
   if (tasks.empty()) {
     for (const char* t : {"env008", "env017", "env026"}) {
       tasks.push_back(std::string(VB_SOURCE_DIR) + "/tasks/" + t + ".yaml");
@@ -85,9 +93,12 @@ int main(int argc, char** argv) {
       std::printf("%-6s update on %s: median %.0f us wall (p90 %.0f), %.0f us CPU (p90 %.0f) "
                   "over %zu updates\n", system, task.name.c_str(), Quantile(us, 0.5),
                   Quantile(us, 0.9), Quantile(cpu_us, 0.5), Quantile(cpu_us, 0.9), us.size());
+      std::fflush(stdout);
     }
   }
 
+  std::fflush(stdout);
+  if (!trials) return 0;
   std::printf("\n| task | system | sim time (s) | RTF (wall) | RTF (CPU) | outcome |\n");
   std::printf("|---|---|---|---|---|---|\n");
   for (const std::string& path : tasks) {

@@ -97,7 +97,7 @@ def prepare(d: dict, holdout_seed: int):
 
 
 def fit(torch, net_forward, params, x, y, *, epochs, seed, lr=3e-3, batch=1024,
-        angle_noise_cols=(), loss="mse", log=None, max_seconds=None):
+        angle_noise_cols=(), loss="mse", log=None, max_seconds=None, stop_after=None):
     """Adam on (x, y) with per-epoch cosine decay; net_forward(xb) -> normalised prediction,
     y is compared after the same normalisation by the caller's closure."""
     g = torch.Generator().manual_seed(seed)
@@ -127,6 +127,10 @@ def fit(torch, net_forward, params, x, y, *, epochs, seed, lr=3e-3, batch=1024,
             total += float(l_) * len(idx)
         if log:
             log(f"  epoch {ep + 1}/{epochs} loss {total / n:.5f} ({time.time() - t0:.0f} s)")
+        if stop_after is not None and ep + 1 >= stop_after:
+            if log:
+                log(f"  stopped after {stop_after} epochs (--stop-epochs)")
+            break
         if max_seconds and time.time() - t0 > max_seconds:
             if log:
                 log(f"  stopped at the time budget ({max_seconds} s)")
@@ -152,6 +156,9 @@ def train(name: str, d: dict, args, log=print) -> dict:
                  "mppi6": [x.shape[1], 24, 24, y.shape[1]]}[name]
         members = ENSEMBLE if name == "mppi6" else 1
         rng = np.random.default_rng(args.seed)
+        stops = [int(v) for v in args.stop_epochs.split(",")] if args.stop_epochs else None
+        if stops and len(stops) != members:
+            raise SystemExit(f"--stop-epochs needs {members} values")
         for m in range(members):
             torch.manual_seed(args.seed * 100 + m)
             idx = rng.integers(0, len(x), len(x)) if members > 1 else np.arange(len(x))  # bootstrap
@@ -160,7 +167,8 @@ def train(name: str, d: dict, args, log=print) -> dict:
             net = hm.Normalised(hm.mlp(sizes), mx, sx, my, sy)
             fit(torch, lambda xb, yb: (net.normalised_forward(xb), (yb - net.out_mean) / net.out_std),
                 net.net.parameters(), xm, ym, epochs=ep, seed=args.seed * 100 + m,
-                angle_noise_cols=(15, 16), log=log, max_seconds=args.max_seconds / members)
+                angle_noise_cols=(15, 16), log=log, max_seconds=args.max_seconds / members,
+                stop_after=stops[m] if stops else None)
             prefix = "wmvct.net" if name == "wmvct" else f"mppi6.m{m}"
             tensors.update(hm.export_tensors(prefix, net.fold()))
         meta["members"] = str(members)
@@ -416,7 +424,12 @@ def main(argv=None):
     ap.add_argument("--evaluate", action="store_true")
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--epochs", type=int, default=12)
-    ap.add_argument("--max-seconds", type=float, default=600.0, help="training time budget")
+    ap.add_argument("--max-seconds", type=float, default=0.0,
+                    help="training time budget (s; 0: none). Stops at a wall-clock-dependent "
+                         "epoch: not reproducible; the committed models give --stop-epochs")
+    ap.add_argument("--stop-epochs", default=None,
+                    help="per ensemble member, the epoch after which to stop (the cosine "
+                         "schedule still spans --epochs), e.g. 6,8,7,6,12")
     ap.add_argument("--holdout-seed", type=int, default=1081)
     ap.add_argument("--max-episodes", type=int, default=None, help="tests: a small prefix")
     ap.add_argument("--cache", default=None)
