@@ -10,6 +10,7 @@
 
 #include "io/batch_io.h"
 #include "io/cli_args.h"
+#include "io/model_store.h"
 #include "io/result_io.h"
 #include "io/soil_io.h"
 #include "io/task_io.h"
@@ -147,7 +148,7 @@ class FailuresMode : public Mode {
       spec.system = row.system;
       spec.vehicle = row.vehicle;
       std::unique_ptr<vb::controllers::Controller> controller =
-          vb::controllers::MakeController(row.system);
+          vb::controllers::MakeController(row.system, &models_);
       if (!controller) {
         throw vb::InputError(stems_[static_cast<size_t>(e)], 0, "system",
                              "unknown system '" + row.system + "'");
@@ -202,6 +203,7 @@ class FailuresMode : public Mode {
   std::vector<std::string> stems_;
   std::string vehicle_file_;
   vb::vehicles::VehicleParams vehicle_;
+  vb::io::DataDirModelStore models_{DataDir()};   // weights of learned systems, read on first use
   std::vector<WorkItem> items_;
 };
 

@@ -13,8 +13,9 @@ namespace vb::runner {
 
 namespace {
 
-std::unique_ptr<controllers::Controller> MakeSystem(const std::string& name) {
-  std::unique_ptr<controllers::Controller> c = controllers::MakeController(name);
+std::unique_ptr<controllers::Controller> MakeSystem(const std::string& name,
+                                                  const nn::ModelStore* models) {
+  std::unique_ptr<controllers::Controller> c = controllers::MakeController(name, models);
   if (c) return c;
   std::string valid;
   for (const std::string& n : controllers::ControllerNames()) {
@@ -33,11 +34,11 @@ std::string Fmt(double x) {
 
 TrialResult RunTrial(const terrain::TaskSpec& task, const vehicles::VehicleParams& vehicle,
                      const TrialSpec& spec, const EpisodeRules& rules,
-                     const soil::SoilConfig* soil) {
+                     const soil::SoilConfig* soil, const nn::ModelStore* models) {
   using Clock = std::chrono::steady_clock;
   const auto wall_start = Clock::now();
   Episode episode(task, vehicle, rules, soil);
-  std::unique_ptr<controllers::Controller> controller = MakeSystem(spec.system);
+  std::unique_ptr<controllers::Controller> controller = MakeSystem(spec.system, models);
   episode.SetObservationConfig(controller->observation_config());
   episode.Reset(spec);
   controller->Reset(episode.context());
