@@ -4,20 +4,24 @@
 #include "vb/controllers/controller.h"
 
 #include "vb/controllers/eh_controller.h"
+#include "vb/controllers/hybrid_controller.h"
 #include "vb/controllers/mppi_controller.h"
 #include "vb/controllers/pid_controller.h"
 
 namespace vb::controllers {
 
 std::vector<std::string> ControllerNames() {
-  return {"pid", "eh", "mppi", "eh_original", "mppi_original"};
+  return {"pid", "eh", "mppi", "wmvct", "mppi6", "tal", "tnt", "eh_original", "mppi_original"};
 }
 
 std::unique_ptr<Controller> MakeController(const std::string& name, const nn::ModelStore* models) {
-  (void)models;   // no learned system registered yet
   if (name == "pid") return std::make_unique<PidController>();
   if (name == "eh") return std::make_unique<EhController>();
   if (name == "mppi") return std::make_unique<MppiController>();
+  if (name == "wmvct") return MakeHybridController(HybridSystem::kWmvct, name, models);
+  if (name == "mppi6") return MakeHybridController(HybridSystem::kMppi6, name, models);
+  if (name == "tal") return MakeHybridController(HybridSystem::kTal, name, models);
+  if (name == "tnt") return MakeHybridController(HybridSystem::kTnt, name, models);
   if (name == "eh_original") {
     EhParams p;
     p.original_left_regions = true;
