@@ -5,6 +5,7 @@
 
 #include "vb/controllers/eh_controller.h"
 #include "vb/controllers/learned_controller.h"
+#include "vb/controllers/hybrid_controller.h"
 #include "vb/controllers/mppi_controller.h"
 #include "vb/controllers/pid_controller.h"
 #include "vb/engine/error.h"
@@ -12,13 +13,18 @@
 namespace vb::controllers {
 
 std::vector<std::string> ControllerNames() {
-  return {"pid", "eh", "mppi", "rl", "mcl", "acl", "eh_original", "mppi_original", "straight"};
+  return {"pid", "eh", "mppi", "rl", "mcl", "acl", "wmvct", "mppi6", "tal", "tnt",
+          "eh_original", "mppi_original", "straight"};
 }
 
 std::unique_ptr<Controller> MakeController(const std::string& name, const nn::ModelStore* models) {
   if (name == "pid") return std::make_unique<PidController>();
   if (name == "eh") return std::make_unique<EhController>();
   if (name == "mppi") return std::make_unique<MppiController>();
+  if (name == "wmvct") return MakeHybridController(HybridSystem::kWmvct, name, models);
+  if (name == "mppi6") return MakeHybridController(HybridSystem::kMppi6, name, models);
+  if (name == "tal") return MakeHybridController(HybridSystem::kTal, name, models);
+  if (name == "tnt") return MakeHybridController(HybridSystem::kTnt, name, models);
   if (name == "eh_original") {
     EhParams p;
     p.original_left_regions = true;

@@ -32,9 +32,10 @@ options:
                      VB_DATA_DIR defaults to share/vb/data next to this program's bin/
   --system NAME      mobility system (default: pid): pid, eh, mppi (the paper's classical
                      baselines), rl, mcl, acl (policies trained in vb, weights from
-                     $VB_DATA_DIR/policies; docs/learning.md), eh_original, mppi_original (the
-                     original code's variants, docs/baselines.md), straight (PID steering at the
-                     goal, not the path: a reference)
+                     $VB_DATA_DIR/policies; docs/learning.md), wmvct, mppi6, tal, tnt (the
+                     hybrid baselines: learned models from $VB_DATA_DIR/models), eh_original,
+                     mppi_original (the original code's variants, docs/baselines.md), straight
+                     (PID steering at the goal, not the path: a reference)
   --soil NAME        soil parameters $VB_DATA_DIR/soils/NAME.yaml for tasks with mud, sand or
                      snow patches (default: verti_bench, the original's three soils)
   --perception NAME  what the system sees: none (ground truth, default), a preset of
