@@ -19,7 +19,8 @@ matrix:
   --vehicles LIST|all  vehicles from $VB_DATA_DIR/vehicles (default: hmmwv)
   --systems LIST|all   mobility systems (default: pid): pid, eh, mppi (the paper's classical
                        baselines), eh_original, mppi_original (the original code's variants,
-                       docs/baselines.md); --system is the same flag
+                       docs/baselines.md), oracle (the privileged expert; budget variants
+                       oracle-h<s>-r<s>-n<k>-e<0|1>; not in "all"); --system is the same flag
   --perception LIST    perception presets, e.g. none,mild,moderate,severe (default: none, ground
                        truth); a preset of $VB_DATA_DIR/perception/ (docs/perception.md)
   --seeds LIST         trial seeds, e.g. 0-4 (default: 0)

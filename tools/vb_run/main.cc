@@ -19,6 +19,7 @@
 #include "vb/controllers/controller.h"
 #include "vb/engine/error.h"
 #include "vb/engine/runner/episode.h"
+#include "vb/engine/runner/systems.h"
 
 namespace {
 
@@ -31,7 +32,8 @@ options:
                      VB_DATA_DIR defaults to share/vb/data next to this program's bin/
   --system NAME      mobility system (default: pid): pid, eh, mppi (the paper's classical
                      baselines), eh_original, mppi_original (the original code's variants,
-                     docs/baselines.md)
+                     docs/baselines.md), oracle (the privileged expert that plans with vb's
+                     own physics; budget variants oracle-h<s>-r<s>-n<k>-e<0|1>, docs/baselines.md)
   --soil NAME        soil parameters $VB_DATA_DIR/soils/NAME.yaml for tasks with mud, sand or
                      snow patches (default: verti_bench, the original's three soils)
   --perception NAME  what the system sees: none (ground truth, default), a preset of
@@ -127,11 +129,7 @@ int Run(const Options& o) {
     throw vb::InputError("", 0, "--vehicle", "unknown vehicle '" + o.vehicle + "' in " + data_dir +
                                                  "/vehicles; valid: " + vb::io::JoinNames(vehicles));
   }
-  const std::vector<std::string> systems = vb::controllers::ControllerNames();
-  if (std::find(systems.begin(), systems.end(), o.system) == systems.end()) {
-    throw vb::InputError("", 0, "--system",
-                         "unknown system '" + o.system + "'; valid: " + vb::io::JoinNames(systems));
-  }
+  vb::runner::ValidateSystemName(o.system, "--system");
   // Checked against the listing even when the task needs no soil: a typo is an error either way,
   // and a name can never reach outside soils/.
   const std::vector<std::string> soils = vb::io::SoilNames(data_dir);
