@@ -9,6 +9,7 @@
 #include <string>
 
 #include "io/result_io.h"
+#include "io/yaml_strict.h"
 #include "io/soil_io.h"
 #include "io/vehicle_io.h"
 #include "mode.h"
