@@ -121,14 +121,20 @@ void OracleController::BuildPlanner() {
   plan_ = std::make_unique<Episode>(real_->task(), real_->vehicle_params(), rules,
                                     real_->soil_config());
   plan_->SetObservationConfig(observation_config());
-  cost_grid_ = std::make_unique<terrain::OccupancyGrid>(terrain::Inflate(
-      terrain::RasterizeObstacles(real_->task()), params_.cost_inflation_cells));
+  const int inflation = params_.cost_inflation_cells >= 0
+                            ? params_.cost_inflation_cells
+                            : terrain::PlannerInflationCells(real_->task());
+  cost_grid_ = std::make_unique<terrain::OccupancyGrid>(
+      terrain::Inflate(terrain::RasterizeObstacles(real_->task()), inflation));
 }
 
 void OracleController::Reset(const controllers::EpisodeContext& context) {
   context_ = context;
   segment_steps_ = Periods(params_.replan_period_s, context.control_period_s, "replanning period");
   horizon_steps_ = Periods(params_.horizon_s, context.control_period_s, "horizon");
+  stall_steps_ = std::clamp(
+      static_cast<int>(std::lround(params_.stall_window_s / context.control_period_s)), 1,
+      horizon_steps_);
   if (!plan_) BuildPlanner();
   cost_field_ = std::make_unique<terrain::GoalDistanceField>(*cost_grid_,
                                                              cost_grid_->CellOf(context.goal_m));
@@ -184,8 +190,10 @@ double OracleController::Rollout(const Candidate& c, const EpisodeSnapshot& star
   const double t0 = e.time_s();
   double steering = steering_;
   double peak_roll = 0.0;
+  Vec2 stall_start = e.vehicle_state().pose_W.position.head<2>();
   *reached_segment_end = false;
   for (int i = 0; i < horizon_steps_ && !e.Done(); ++i) {
+    if (i == horizon_steps_ - stall_steps_) stall_start = e.vehicle_state().pose_W.position.head<2>();
     e.Step(CommandFor(c, i < segment_steps_, e.Observe(), &steering));
     peak_roll = std::max(peak_roll, std::abs(e.vehicle_state().rpy.roll_rad));
     if (i + 1 == segment_steps_ && !e.Done()) {
@@ -196,14 +204,22 @@ double OracleController::Rollout(const Candidate& c, const EpisodeSnapshot& star
   ++stats_.rollouts;
   stats_.rollout_steps += e.physics_steps() - k0;
 
-  const double ctg = CostToGo(e.vehicle_state().pose_W.position.head<2>());
+  const Vec2 end_xy = e.vehicle_state().pose_W.position.head<2>();
+  const double ctg = CostToGo(end_xy);
   double cost = ctg;
   bool failed = false;
+  const bool stalled =
+      (end_xy - stall_start).norm() < params_.stall_distance_m * context_.scale;
+  if (stalled) {
+    cost += params_.stall_cost_m;
+    failed = true;
+  }
   if (e.Done()) {
     const TrialResult r = e.TakeResult();
     switch (r.status) {
       case TrialStatus::kSuccess:
         cost = params_.success_cost_m + (r.sim_time_s - t0);
+        failed = false;
         break;
       case TrialStatus::kStuck:
         cost += params_.stuck_cost_m;

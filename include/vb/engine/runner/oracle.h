@@ -41,10 +41,19 @@ struct OracleParams {
   // Cost terms (metres of cost-to-go).
   double failure_cost_m = 1.0e4;      // the rollout ends in rollover, out_of_bounds, sim_error
   double stuck_cost_m = 1.0e3;        // the rollout ends stuck
+  // Stalled: the rollout moved less than stall_distance_m (x scale) in its last stall_window_s
+  // (hung up on a rock, dug in, facing a wall: a stuck in the making that the 10 s stuck rule
+  // cannot see within a short horizon).
+  double stall_window_s = 1.0;
+  double stall_distance_m = 0.5;
+  double stall_cost_m = 100.0;
   double tip_roll_rad = 25.0 * 3.14159265358979323846 / 180.0;  // peak |roll| above: penalty
   double tip_cost_m_per_rad = 500.0;  // per radian of peak |roll| above tip_roll_rad
   double success_cost_m = -1.0e4;     // plus the time to the goal in seconds
-  int cost_inflation_cells = 1;       // obstacle dilation of the cost-to-go grid
+  // Obstacle dilation of the cost-to-go grid in cells; -1: the global planners' (4 m x scale,
+  // terrain::PlannerInflationCells), so the cost-to-go is the metric the path follower's A*
+  // follows (a thinner dilation lures the planner into gaps the vehicle cannot pass).
+  int cost_inflation_cells = -1;
 };
 
 // Parses "oracle" (default budget) or "oracle-h<horizon s>-r<replan s>-n<steering levels>-e<0|1>"
@@ -105,6 +114,7 @@ class OracleController : public controllers::Controller {
   controllers::EpisodeContext context_;
   int segment_steps_ = 1;   // control periods per committed segment
   int horizon_steps_ = 1;   // control periods per rollout
+  int stall_steps_ = 1;     // control periods of the stall window (<= horizon)
   // Built on first use (Reset): the planning episode and the cost-to-go field.
   std::unique_ptr<Episode> plan_;
   std::unique_ptr<terrain::OccupancyGrid> cost_grid_;
