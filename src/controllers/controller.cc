@@ -13,7 +13,8 @@ std::vector<std::string> ControllerNames() {
   return {"pid", "eh", "mppi", "eh_original", "mppi_original"};
 }
 
-std::unique_ptr<Controller> MakeController(const std::string& name) {
+std::unique_ptr<Controller> MakeController(const std::string& name, const nn::ModelStore* models) {
+  (void)models;   // no learned system registered yet
   if (name == "pid") return std::make_unique<PidController>();
   if (name == "eh") return std::make_unique<EhController>();
   if (name == "mppi") return std::make_unique<MppiController>();

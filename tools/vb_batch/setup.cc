@@ -10,6 +10,7 @@
 
 #include "io/cli_args.h"
 #include "io/data_dir.h"
+#include "io/model_store.h"
 #include "io/perception_io.h"
 #include "io/soil_io.h"
 #include "io/task_io.h"
@@ -81,6 +82,11 @@ std::vector<std::string> ResolveEnvs(const std::vector<std::string>& envs) {
 const std::string& DataDir() {
   static const std::string dir = vb::io::DataDir();   // located and checked once
   return dir;
+}
+
+const vb::nn::ModelStore& Models() {
+  static const vb::io::DataDirModelStore store(DataDir());
+  return store;
 }
 
 int DefaultJobs() {

@@ -8,6 +8,7 @@
 #include "io/result_io.h"
 #include "options.h"
 #include "vb/batch/matrix.h"
+#include "vb/nn/model_store.h"
 
 namespace vb_batch {
 
@@ -21,6 +22,8 @@ vb::batch::MatrixSpec BuildSpec(const Options& o, const std::vector<std::string>
 // The data directory (io::DataDir(): $VB_DATA_DIR or share/vb/data next to the executable),
 // located and checked on the first call.
 const std::string& DataDir();
+// Trained weights of the learned systems, read from DataDir() on first use and kept.
+const vb::nn::ModelStore& Models();
 // CPUs this process may run on (respects affinity masks set by Slurm or taskset).
 int DefaultJobs();
 // Provenance of a trial of task `t` (this build, this host, the task's hash).

@@ -47,7 +47,7 @@ namespace vb_batch {
       const std::optional<vb::soil::SoilConfig> soil =
           vb::io::LoadSoilIfNeeded(task, soil_file);
       const vb::runner::TrialResult r =
-          vb::runner::RunTrial(task, params, spec, rules, soil ? &*soil : nullptr);
+          vb::runner::RunTrial(task, params, spec, rules, soil ? &*soil : nullptr, &Models());
       // Trajectory first: a record's presence implies its trajectory is complete.
       vb::io::WriteTrajectoryCsv(r, stem_path + "_traj.csv");
       vb::io::Provenance provenance = vb::io::MakeProvenance(task, spec);

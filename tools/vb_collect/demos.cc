@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 
+#include "io/model_store.h"
 #include "io/result_io.h"
 #include "io/yaml_strict.h"
 #include "io/soil_io.h"
@@ -74,7 +75,7 @@ class DemosMode : public Mode {
       spec.seed = gen.seed * 100 + static_cast<uint64_t>(j);
       spec.system = o_.system;
       spec.vehicle = o_.vehicle;
-      vb::dataset::ControllerPolicy policy(vb::runner::MakeSystem(o_.system, episode));
+      vb::dataset::ControllerPolicy policy(vb::runner::MakeSystem(o_.system, episode, &models_));
       episode.Reset(spec);
       policy.Start(episode);
       vb::dataset::EpisodeRecord r = vb::dataset::RecordEpisode(episode, policy, config_);
@@ -114,6 +115,7 @@ class DemosMode : public Mode {
   std::string vehicle_file_, soil_file_;
   vb::vehicles::VehicleParams vehicle_;
   std::vector<WorkItem> items_;
+  vb::io::DataDirModelStore models_{DataDir()};   // weights of learned experts, read on first use
 };
 
 }  // namespace

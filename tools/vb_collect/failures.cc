@@ -10,6 +10,7 @@
 
 #include "io/batch_io.h"
 #include "io/cli_args.h"
+#include "io/model_store.h"
 #include "io/result_io.h"
 #include "io/soil_io.h"
 #include "io/task_io.h"
@@ -154,7 +155,7 @@ class FailuresMode : public Mode {
                              "unknown system '" + row.system + "'");
       }
       std::unique_ptr<vb::controllers::Controller> controller =
-          vb::runner::MakeSystem(row.system, episode);
+          vb::runner::MakeSystem(row.system, episode, &models_);
       episode.Reset(spec);
       vb::dataset::ControllerPolicy policy(std::move(controller));
       policy.Start(episode);
@@ -205,6 +206,7 @@ class FailuresMode : public Mode {
   std::vector<std::string> stems_;
   std::string vehicle_file_;
   vb::vehicles::VehicleParams vehicle_;
+  vb::io::DataDirModelStore models_{DataDir()};   // weights of learned systems, read on first use
   std::vector<WorkItem> items_;
 };
 

@@ -11,6 +11,7 @@
 
 #include "io/cli_args.h"
 #include "io/data_dir.h"
+#include "io/model_store.h"
 #include "io/perception_io.h"
 #include "io/result_io.h"
 #include "io/soil_io.h"
@@ -124,6 +125,7 @@ Options ParseArgs(int argc, char** argv) {
 
 int Run(const Options& o) {
   const std::string data_dir = vb::io::DataDir();
+  const vb::io::DataDirModelStore models(data_dir);
   const std::vector<std::string> vehicles = vb::io::VehicleNames(data_dir);
   if (std::find(vehicles.begin(), vehicles.end(), o.vehicle) == vehicles.end()) {
     throw vb::InputError("", 0, "--vehicle", "unknown vehicle '" + o.vehicle + "' in " + data_dir +
@@ -180,7 +182,7 @@ int Run(const Options& o) {
     spec.seed = o.seed;
     spec.system = o.system;
     spec.vehicle = o.vehicle;
-    vb::runner::TrialResult r = vb::runner::RunTrial(task, params, spec, rules, soil ? &*soil : nullptr);
+    vb::runner::TrialResult r = vb::runner::RunTrial(task, params, spec, rules, soil ? &*soil : nullptr, &models);
     const std::string stem = out_dir + "/" + vb::io::TrialFileStem(r);
     vb::io::Provenance provenance = vb::io::MakeProvenance(task, spec);
     vb::io::RecordParameterFiles(vehicle_file, o.soil, soil ? soil_file : "", &provenance);

@@ -11,6 +11,7 @@
 
 #include "vb/controllers/observation.h"
 #include "vb/engine/types.h"
+#include "vb/nn/model_store.h"
 #include "vb/terrain/grid_planner.h"
 #include "vb/terrain/gt_maps.h"
 #include "vb/terrain/task.h"
@@ -51,8 +52,11 @@ class Controller {
   virtual std::unique_ptr<Controller> Clone() const = 0;
 };
 
-// Names of all available systems, and a factory; nullptr for an unknown name.
+// Names of all available systems, and a factory; nullptr for an unknown name. Learned systems
+// load their weights through `models` (the tools pass io::DataDirModelStore); asking for one
+// without a store throws InputError.
 std::vector<std::string> ControllerNames();
-std::unique_ptr<Controller> MakeController(const std::string& name);
+std::unique_ptr<Controller> MakeController(const std::string& name,
+                                           const nn::ModelStore* models = nullptr);
 
 }  // namespace vb::controllers

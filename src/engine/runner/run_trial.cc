@@ -24,12 +24,12 @@ std::string Fmt(double x) {
 
 TrialResult RunTrial(const terrain::TaskSpec& task, const vehicles::VehicleParams& vehicle,
                      const TrialSpec& spec, const EpisodeRules& rules,
-                     const soil::SoilConfig* soil) {
+                     const soil::SoilConfig* soil, const nn::ModelStore* models) {
   using Clock = std::chrono::steady_clock;
   const auto wall_start = Clock::now();
   ValidateSystemName(spec.system);
   Episode episode(task, vehicle, rules, soil);
-  std::unique_ptr<controllers::Controller> controller = MakeSystem(spec.system, episode);
+  std::unique_ptr<controllers::Controller> controller = MakeSystem(spec.system, episode, models);
   episode.SetObservationConfig(controller->observation_config());
   episode.Reset(spec);
   controller->Reset(episode.context());

@@ -1,6 +1,8 @@
 // System names -> implementations: the controller registry plus the oracle (systems.h).
 #include "vb/engine/runner/systems.h"
 
+#include <algorithm>
+
 #include "vb/engine/error.h"
 #include "vb/engine/runner/oracle.h"
 
@@ -17,19 +19,21 @@ void ValidateSystemName(const std::string& name, const std::string& key) {
     ParseOracleName(name, key);  // throws for a bad budget
     return;
   }
-  if (controllers::MakeController(name)) return;
+  const std::vector<std::string> registry = controllers::ControllerNames();
+  if (std::find(registry.begin(), registry.end(), name) != registry.end()) return;
   std::string valid;
   for (const std::string& n : SystemNames()) valid += (valid.empty() ? "" : ", ") + n;
   throw InputError("", 0, key, "unknown system '" + name + "'; valid: " + valid);
 }
 
 std::unique_ptr<controllers::Controller> MakeSystem(const std::string& name,
-                                                    const Episode& episode) {
+                                                    const Episode& episode,
+                                                    const nn::ModelStore* models) {
   if (IsOracleName(name)) {
     return std::make_unique<OracleController>(&episode, ParseOracleName(name), name);
   }
   ValidateSystemName(name);
-  return controllers::MakeController(name);
+  return controllers::MakeController(name, models);
 }
 
 }  // namespace vb::runner

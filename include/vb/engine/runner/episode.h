@@ -214,9 +214,11 @@ class Episode {
 // step until the trial is decided. Never throws for numerical trouble (that is kSimError); throws
 // InputError only for a trial that cannot be set up (pair index out of range, unknown system, a
 // task with deformable patches but no soil parameters). `soil` (loaded by io::LoadSoil) is needed
-// only when the task has mud, sand or snow patches.
+// only when the task has mud, sand or snow patches; `models` (io::DataDirModelStore) only for
+// learned systems, which load their weights through it.
 TrialResult RunTrial(const terrain::TaskSpec& task, const vehicles::VehicleParams& vehicle,
                      const TrialSpec& spec, const EpisodeRules& rules = EpisodeRules(),
-                     const soil::SoilConfig* soil = nullptr);
+                     const soil::SoilConfig* soil = nullptr,
+                     const nn::ModelStore* models = nullptr);
 
 }  // namespace vb::runner

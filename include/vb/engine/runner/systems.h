@@ -18,9 +18,11 @@ class Episode;
 std::vector<std::string> SystemNames();
 // Throws InputError (naming `key`, e.g. the flag) unless `name` can be made.
 void ValidateSystemName(const std::string& name, const std::string& key = "system");
-// The system `name` driving `episode` (which must outlive it). Throws InputError for an unknown
-// name or an invalid oracle budget.
+// The system `name` driving `episode` (which must outlive it); learned systems load their
+// weights through `models` (controllers::MakeController). Throws InputError for an unknown name
+// or an invalid oracle budget.
 std::unique_ptr<controllers::Controller> MakeSystem(const std::string& name,
-                                                    const Episode& episode);
+                                                    const Episode& episode,
+                                                    const nn::ModelStore* models = nullptr);
 
 }  // namespace vb::runner
