@@ -8,7 +8,7 @@ the inclusive instruction counts of the stages of Episode::Impl::PhysicsStep. Co
 by running it with --build of each (the instruction count of the same binary and input is
 repeatable; different builds may take different trajectories, hence "per step").
 
-usage: scripts/profile_step.py TASK [--pairs 2] [--build build] [--keep FILE]
+usage: scripts/profile_step.py TASK [--pairs 2] [--build build] [--keep FILE] [--vehicle hmmwv]
 """
 import argparse
 import os
@@ -54,6 +54,7 @@ def main():
     ap.add_argument("--pairs", type=int, default=2)
     ap.add_argument("--build", default="build")
     ap.add_argument("--keep", help="keep the callgrind output in this file")
+    ap.add_argument("--vehicle", default="hmmwv", help="data/vehicles/NAME.yaml")
     a = ap.parse_args()
     bench = os.path.join(a.build, "bench", "vb_bench_episode")
     if not os.access(bench, os.X_OK):
@@ -63,7 +64,7 @@ def main():
         trimmed_task(a.task, a.pairs, task)
         out = a.keep or os.path.join(tmp, "callgrind.out")
         run = subprocess.run(["valgrind", "--tool=callgrind", "--callgrind-out-file=" + out,
-                              bench, task, "1"], capture_output=True, text=True)
+                              bench, task, "1", a.vehicle], capture_output=True, text=True)
         if run.returncode != 0:
             sys.exit(run.stdout + run.stderr)
         m = re.search(r"(\d+) steps", run.stdout)

@@ -80,6 +80,11 @@ class PhysicsWorld {
   PhysicsWorld(const PhysicsWorld&) = delete;
   PhysicsWorld& operator=(const PhysicsWorld&) = delete;
 
+  // Gravity as a world-frame vector (default (0, 0, -gravity_mps2)). Tilting it is a tilt table
+  // that turns slowly under a vehicle settled on flat ground (validation tests); the terrain
+  // contact never reads gravity, so the two are the same experiment.
+  void SetGravity(const Vec3& gravity_W);
+
   // Articulated bodies. Link i of the returned body is links[i].
   MultiBodyId AddMultiBody(const MultiBodyBaseSpec& base, const std::vector<MultiBodyLinkSpec>& links);
 

@@ -135,6 +135,10 @@ struct PhysicsWorld::Impl {
   }
 };
 
+void PhysicsWorld::SetGravity(const Vec3& gravity_W) {
+  impl_->world.setGravity(btVector3(gravity_W.x(), gravity_W.y(), gravity_W.z()));
+}
+
 PhysicsWorld::PhysicsWorld(double gravity_mps2) : impl_(std::make_unique<Impl>()) {
   impl_->world.setGravity(btVector3(0, 0, -gravity_mps2));
   // No collision pairs ever exist (every collider is in no group), so Bullet's broadphase and
