@@ -3,21 +3,23 @@
 # provenance names a real commit (never "-dirty") and its tasks by their task set path
 # (tasks/envNNN.yaml, docs/install.md "Provenance"), not by this machine's paths.
 #
-#   scripts/make_results.sh NAME [JOBS]     NAME: pid_hmmwv | classical_hmmwv | robustness_pid
+#   scripts/make_results.sh NAME [JOBS]     NAME: pid_hmmwv | classical_hmmwv | robustness_pid |
+#                                                 oracle_hmmwv
 #
 # Refuses (exit 2) when tracked files differ from HEAD, or when build/ was not built from HEAD
 # (vb_run --version must print HEAD's commit without -dirty): `git stash` or commit first, then
 # `cmake --build build`. Runs the same commands the docs quote for each set (docs/reports.md,
 # docs/baselines.md, docs/perception.md) into a temporary directory and copies the report,
 # top-down pictures and index into docs/results/NAME. Long: pid_hmmwv is 1000 trials (~3 min on
-# 2 free cores), classical_hmmwv 1400 (over an hour), robustness_pid 800 (~15 min).
+# 2 free cores), classical_hmmwv 1400 (over an hour), robustness_pid 800 (~15 min), oracle_hmmwv
+# 200 (PID and the oracle on pair 0 of the 100 environments; see docs/baselines.md "Oracle").
 set -euo pipefail
 cd "$(dirname "$0")/.."
 name=${1:-}
 jobs=${2:-2}
 case "$name" in
-  pid_hmmwv|classical_hmmwv|robustness_pid) ;;
-  *) echo "usage: scripts/make_results.sh pid_hmmwv|classical_hmmwv|robustness_pid [JOBS]" >&2
+  pid_hmmwv|classical_hmmwv|robustness_pid|oracle_hmmwv) ;;
+  *) echo "usage: scripts/make_results.sh pid_hmmwv|classical_hmmwv|robustness_pid|oracle_hmmwv [JOBS]" >&2
      exit 2 ;;
 esac
 if [ -n "$(git status --porcelain --untracked-files=no)" ]; then
@@ -48,6 +50,10 @@ case "$name" in
   robustness_pid)
     batch --pairs 0,5 --perception none,mild,moderate,severe --traj-every 20 --out "$tmp/run"
     topdown="" ;;
+  oracle_hmmwv)
+    batch --systems pid,oracle --pairs 0 --traj-every 10 --out "$tmp/run"
+    topdown=env002_p0_s0_hmmwv_pid,env002_p0_s0_hmmwv_oracle
+    topdown+=,env061_p0_s0_hmmwv_pid,env061_p0_s0_hmmwv_oracle ;;
 esac
 build/tools/vb_report "$tmp/run" --out "$tmp/report" ${topdown:+--topdown "$topdown"} --tasks tasks
 rm -f "$tmp/report/trials.html"   # links to trial files that are not committed

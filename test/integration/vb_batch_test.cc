@@ -347,6 +347,7 @@ TEST(VbBatchCliTest, BadInputExitsTwoNamingTheCulprit) {
   } cases[] = {
       {task + " --out /tmp/x --vehicles nosuch", "--vehicles"},
       {task + " --out /tmp/x --systems nosuch", "--systems"},
+      {task + " --out /tmp/x --systems pid,oracle-r9", "replanning period longer than the horizon"},
       {task + " --out /tmp/x --shard 2/2", "--shard"},
       {task + " --out /tmp/x --seeds 3-1", "--seeds"},
       {task + " --out /tmp/x --jobs 0", "--jobs"},

@@ -1,7 +1,7 @@
 // vb_collect end to end (docs/datasets.md): a tiny exploration dataset collected in full, again
 // (byte-identical: determinism), killed with SIGKILL after its first episode and resumed (the
 // same bytes), as two shards; failure windows of a small vb_batch run that end exactly at each
-// trial's end with its failure label; bad input.
+// trial's end with its failure label; expert demonstrations that keep only successes; bad input.
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -136,7 +136,7 @@ TEST_F(VbCollectTest, ShardsAssembleToTheSameDataset) {
 TEST_F(VbCollectTest, BadInputIsRefusedWithExitCode2) {
   const Outcome mode = Sh(kCollect + " wander --out " + (root_ / "bad").string());
   EXPECT_EQ(mode.exit_code, 2) << mode.output;
-  EXPECT_NE(mode.output.find("explore | failures"), std::string::npos) << mode.output;
+  EXPECT_NE(mode.output.find("explore | failures | demos"), std::string::npos) << mode.output;
   const Outcome crops = Sh(kExplore + " --crops height --out " + (root_ / "bad").string());
   EXPECT_EQ(crops.exit_code, 2) << crops.output;
   EXPECT_NE(crops.output.find("--crops"), std::string::npos) << crops.output;
@@ -145,6 +145,13 @@ TEST_F(VbCollectTest, BadInputIsRefusedWithExitCode2) {
   const Outcome from = Sh(kCollect + " failures --out " + (root_ / "bad").string());
   EXPECT_EQ(from.exit_code, 2) << from.output;
   EXPECT_NE(from.output.find("--from"), std::string::npos) << from.output;
+  const Outcome system = Sh(kCollect + " demos --system nope --out " + (root_ / "bad").string());
+  EXPECT_EQ(system.exit_code, 2) << system.output;
+  EXPECT_NE(system.output.find("--system"), std::string::npos) << system.output;
+  const Outcome budget =
+      Sh(kCollect + " demos --system oracle-h0 --out " + (root_ / "bad").string());
+  EXPECT_EQ(budget.exit_code, 2) << budget.output;
+  EXPECT_NE(budget.output.find("horizon"), std::string::npos) << budget.output;
   // Other settings into an existing collection: refused, nothing mixed.
   const Outcome other = Sh(kExplore + " --crop-size 4 --out " + (root_ / "full").string());
   EXPECT_EQ(other.exit_code, 2) << other.output;
@@ -191,6 +198,54 @@ TEST_F(VbCollectTest, FailureWindowsEndAtTheTrialsEndWithTheirLabel) {
   const auto meta = Bytes(out / "data" / "metadata.json");
   EXPECT_NE(meta.find("\"total_episodes\": " + std::to_string(failed.size())), std::string::npos)
       << meta;
+}
+
+// Demonstrations keep only successes: the PID on generated worlds 1000-1002 (low, mid, high) with
+// a 30 s limit reaches some goals in time and not others; the oracle runs through the same path.
+TEST_F(VbCollectTest, DemonstrationsContainOnlySuccesses) {
+  const fs::path out = root_ / "demos";
+  const Outcome d = Sh(kCollect + " demos --episodes 6 --episodes-per-world 2 --system pid "
+                       "--time-limit 30 --crop-size 8 --crop-res 0.5 --quiet --out " +
+                       out.string());
+  ASSERT_EQ(d.exit_code, 0) << d.output;
+  ASSERT_EQ(CountEpisodes(out), 6u);
+  long kept = 0, filtered = 0, steps = 0;
+  for (int e = 0; e < 6; ++e) {
+    const vb::dataset::EpisodeRecord r = vb::io::ReadEpisodeFile(
+        (out / "episodes" / ("ep000000" + std::to_string(e) + ".h5")).string());
+    EXPECT_EQ(r.FindAttribute("mode")->text, "demos");
+    EXPECT_EQ(r.FindAttribute("system")->text, "pid");
+    if (r.FindAttribute("status")->text == "success") {
+      ++kept;
+      steps += r.steps;
+      ASSERT_GT(r.steps, 0);
+      EXPECT_EQ(r.Find("terminations")->i8.back(), 1);
+      EXPECT_LE(r.Find("infos/goal_distance_m")->f64.back(), 10.0);
+    } else {
+      ++filtered;
+      EXPECT_EQ(r.steps, 0) << "a failed demonstration must be empty";
+      EXPECT_NE(r.FindAttribute("message")->text.find("filtered out"), std::string::npos);
+    }
+  }
+  EXPECT_GE(kept, 1);
+  EXPECT_GE(filtered, 1);
+  const auto meta = Bytes(out / "data" / "metadata.json");
+  EXPECT_NE(meta.find("\"total_episodes\": " + std::to_string(kept)), std::string::npos) << meta;
+  EXPECT_NE(meta.find("\"total_steps\": " + std::to_string(steps)), std::string::npos) << meta;
+
+  // The oracle as the expert (a small budget, 4 s: a timeout, so filtered out) twice: same bytes.
+  const std::string oracle = kCollect + " demos --episodes 1 --system oracle-h1-r0.5-n3 "
+                             "--time-limit 4 --crop-size 8 --crop-res 0.5 --quiet --out ";
+  const Outcome o1 = Sh(oracle + (root_ / "oracle1").string());
+  ASSERT_EQ(o1.exit_code, 0) << o1.output;
+  const Outcome o2 = Sh(oracle + (root_ / "oracle2").string());
+  ASSERT_EQ(o2.exit_code, 0) << o2.output;
+  const fs::path ep = fs::path("episodes") / "ep0000000.h5";
+  EXPECT_TRUE(Bytes(root_ / "oracle1" / ep) == Bytes(root_ / "oracle2" / ep));
+  const vb::dataset::EpisodeRecord r = vb::io::ReadEpisodeFile((root_ / "oracle1" / ep).string());
+  EXPECT_EQ(r.FindAttribute("system")->text, "oracle-h1-r0.5-n3");
+  EXPECT_EQ(r.FindAttribute("status")->text, "timeout");
+  EXPECT_EQ(r.steps, 0);
 }
 
 }  // namespace

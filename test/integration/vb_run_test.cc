@@ -77,6 +77,13 @@ TEST_F(VbRunTest, UnknownSystemListsTheAvailableOnes) {
   const Outcome o = RunVbRun(kTask + " --vehicle hmmwv --system teleport --out " + dir_.string());
   EXPECT_EQ(o.exit_code, 2) << o.output;
   EXPECT_NE(o.output.find("pid"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("oracle"), std::string::npos) << o.output;
+  // An oracle budget that cannot be parsed: bad input naming the flag and the budget grammar.
+  const Outcome budget =
+      RunVbRun(kTask + " --vehicle hmmwv --system oracle-h3-z1 --out " + dir_.string());
+  EXPECT_EQ(budget.exit_code, 2) << budget.output;
+  EXPECT_NE(budget.output.find("--system"), std::string::npos) << budget.output;
+  EXPECT_NE(budget.output.find("unknown key 'z'"), std::string::npos) << budget.output;
 }
 
 TEST_F(VbRunTest, BadInputsExitWithCodeTwo) {

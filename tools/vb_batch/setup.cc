@@ -18,6 +18,7 @@
 #include "io/yaml_strict.h"
 #include "vb/controllers/controller.h"
 #include "vb/engine/error.h"
+#include "vb/engine/runner/systems.h"
 #include "vb/engine/runner/episode.h"
 
 namespace vb_batch {
@@ -149,7 +150,13 @@ vb::batch::MatrixSpec BuildSpec(const Options& o, const std::vector<std::string>
     }
   }
   spec.vehicles = NameList("--vehicles", o.vehicles, vb::io::VehicleNames(DataDir()));
-  spec.systems = NameList("--systems", o.systems, vb::controllers::ControllerNames());
+  // "all" is the paper's systems; the oracle (and its budget variants) only when named.
+  if (o.systems == "all") {
+    spec.systems = vb::controllers::ControllerNames();
+  } else {
+    spec.systems = vb::io::SplitList(o.systems, ',');
+    for (const std::string& n : spec.systems) vb::runner::ValidateSystemName(n, "--systems");
+  }
   spec.perceptions = NameList("--perception", o.perception, vb::io::PerceptionNames(DataDir()));
   // Presets are read in every worker; check each once here (one clear error, not a batch of
   // error trials).

@@ -1,7 +1,6 @@
 // explore mode: generated worlds (vb_gen's generator, seeds outside the benchmark's), the random
 // explorer from every start of each world (docs/datasets.md "Random exploration").
 #include <algorithm>
-#include <filesystem>
 #include <optional>
 #include <string>
 
@@ -11,6 +10,7 @@
 #include "io/vehicle_io.h"
 #include "io/yaml_strict.h"
 #include "mode.h"
+#include "worlds.h"
 #include "vb/dataset/explorer.h"
 #include "vb/engine/error.h"
 #include "vb/engine/runner/episode.h"
@@ -19,31 +19,6 @@
 namespace vb_collect {
 
 namespace {
-
-namespace fs = std::filesystem;
-using vb::terrain::ElevationLevel;
-using vb::terrain::ObstacleDensity;
-using vb::terrain::TerrainType;
-
-// World w: seed world_seed + w, labels cycling through all 27 combinations (elevation fastest).
-vb::terrain::GeneratorOptions WorldOptions(const Options& o, long w) {
-  static constexpr ElevationLevel kElev[] = {ElevationLevel::kLow, ElevationLevel::kMid,
-                                             ElevationLevel::kHigh};
-  static constexpr TerrainType kTerr[] = {TerrainType::kRigid, TerrainType::kDeformable,
-                                          TerrainType::kMixed};
-  static constexpr ObstacleDensity kDens[] = {ObstacleDensity::kSparse, ObstacleDensity::kMedium,
-                                              ObstacleDensity::kDense};
-  vb::terrain::GeneratorOptions g;
-  g.seed = o.world_seed + static_cast<uint64_t>(w);
-  g.elevation = kElev[w % 3];
-  g.terrain = kTerr[(w / 3) % 3];
-  g.density = kDens[(w / 9) % 3];
-  g.name = "gen_" + std::string(vb::terrain::ElevationLevelName(g.elevation)) + "_" +
-           std::string(vb::terrain::TerrainTypeName(g.terrain)) + "_" +
-           std::string(vb::terrain::ObstacleDensityName(g.density)) + "_s" +
-           std::to_string(g.seed);
-  return g;
-}
 
 class ExploreMode : public Mode {
  public:
@@ -80,19 +55,9 @@ class ExploreMode : public Mode {
 
   void Run(const WorkItem& item, const std::vector<long>& todo, const EpisodeSink& sink) override {
     const long w = item.episodes.front() / o_.episodes_per_world;
-    const vb::terrain::GeneratorOptions gen = WorldOptions(o_, w);
-    // The world as vb_gen writes it (task file + 16-bit height image), loaded back as every tool
-    // loads tasks, so vb_run on DIR/worlds/NAME.yaml drives the same world.
-    const fs::path worlds = fs::path(o_.out_dir) / "worlds";
-    std::error_code ec;
-    fs::create_directories(worlds, ec);
-    vb::terrain::TaskSpec generated = vb::terrain::GenerateTask(gen);
-    generated.height_image = gen.name + ".png";
-    const fs::path task_path = worlds / (gen.name + ".yaml");
-    vb::io::WriteHeightImage(generated.heights, generated.min_height_m, generated.max_height_m,
-                             (worlds / generated.height_image).string());
-    vb::io::SaveTask(generated, task_path.string());
-    const vb::terrain::TaskSpec task = vb::io::LoadTask(task_path.string());
+    const GeneratedWorld world = WriteWorld(o_, w);
+    const vb::terrain::GeneratorOptions& gen = world.options;
+    const vb::terrain::TaskSpec& task = world.task;
     const std::optional<vb::soil::SoilConfig> soil = vb::io::LoadSoilIfNeeded(task, soil_file_);
 
     vb::runner::EpisodeRules rules;

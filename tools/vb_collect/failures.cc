@@ -20,6 +20,7 @@
 #include "vb/batch/index.h"
 #include "vb/engine/error.h"
 #include "vb/engine/runner/episode.h"
+#include "vb/engine/runner/systems.h"
 
 namespace vb_collect {
 
@@ -147,12 +148,14 @@ class FailuresMode : public Mode {
       spec.seed = row.seed;
       spec.system = row.system;
       spec.vehicle = row.vehicle;
-      std::unique_ptr<vb::controllers::Controller> controller =
-          vb::controllers::MakeController(row.system, &models_);
-      if (!controller) {
+      try {
+        vb::runner::ValidateSystemName(row.system);
+      } catch (const vb::InputError&) {
         throw vb::InputError(stems_[static_cast<size_t>(e)], 0, "system",
                              "unknown system '" + row.system + "'");
       }
+      std::unique_ptr<vb::controllers::Controller> controller =
+          vb::runner::MakeSystem(row.system, episode, &models_);
       episode.Reset(spec);
       vb::dataset::ControllerPolicy policy(std::move(controller));
       policy.Start(episode);

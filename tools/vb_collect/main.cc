@@ -124,7 +124,9 @@ using WorkList = std::vector<std::pair<const WorkItem*, std::vector<long>>>;
 
 int Run(const Options& o) {
   const Clock::time_point t0 = Clock::now();
-  std::unique_ptr<Mode> mode = o.mode == "explore" ? MakeExploreMode(o) : MakeFailuresMode(o);
+  std::unique_ptr<Mode> mode = o.mode == "explore"    ? MakeExploreMode(o)
+                              : o.mode == "failures" ? MakeFailuresMode(o)
+                                                     : MakeDemosMode(o);
   const vb::batch::Shard shard = vb::batch::ParseShard(o.shard);
   const int lock_fd = vb::io::PrepareOutputDir(o.out_dir, "episodes", mode->Settings(),
                                                "vb_collect");
@@ -253,10 +255,12 @@ int Run(const Options& o) {
   info.attributes["vb_action_space"] = vb::dataset::ActionKindName(mode->action_kind());
   const vb::io::AssembleCounts c =
       vb::io::AssembleDataset(files, info, (fs::path(o.out_dir) / "data").string());
+  // Simulated hours of all episodes run (kept or not); the kept ones hold steps x sample period.
   std::printf("vb_collect: dataset %s: %ld episodes, %ld steps, %.3f simulated hours%s -> %s\n",
               o.dataset_id.c_str(), c.episodes, c.steps, sim_s / 3600.0,
               left_out > 0 ? (" (" + std::to_string(left_out) +
-                              " sim_error/empty episode(s) left out)").c_str()
+                              " sim_error/empty/filtered episode(s) left out)")
+                                 .c_str()
                            : "",
               (fs::path(o.out_dir) / "data" / "main_data.hdf5").c_str());
   return 0;

@@ -8,6 +8,7 @@
 #include "vb/batch/matrix.h"
 #include "vb/engine/error.h"
 #include "vb/engine/runner/episode.h"
+#include "vb/engine/runner/systems.h"
 
 namespace vb_collect {
 
@@ -15,6 +16,8 @@ const char* const kUsage = R"(usage:
   vb_collect explore  --out DIR [--episodes N] [--world-seed S] [--episodes-per-world K]
                       [--max-episode-s T] [options]
   vb_collect failures --from BATCH_DIR --out DIR [--window-s W] [options]
+  vb_collect demos    --out DIR [--episodes N] [--world-seed S] [--episodes-per-world K]
+                      [--system NAME] [--time-limit T] [options]
 
 Collects a dataset for learning (docs/datasets.md) in Minari's HDF5 layout: DIR/episodes/ holds
 one file per episode (written atomically; a killed run resumes where it stopped), and when every
@@ -29,20 +32,27 @@ Modes:
   failures   the last --window-s seconds of every rollover and stuck trial of a vb_batch results
              directory, re-simulated from the trial's task, pair, seed and system (trials are
              deterministic) and labelled with the failure type.
+  demos      expert demonstrations: --system (default oracle, the privileged expert that plans
+             with vb's own physics) drives from every start of the explore mode's generated
+             worlds to the pair's goal under the benchmark's rules; only successes are kept
+             (failed episodes leave an empty episode file, left out of the dataset).
 
 Options:
   --out DIR               output directory (required)
-  --episodes N            explore: number of episodes (default 10)
-  --world-seed S          explore: generator seed of the first world (default 1000)
-  --episodes-per-world K  explore: episodes per world, one per start/goal pair, 1..10 (default 10)
+  --episodes N            explore, demos: number of episodes (default 10; demos: attempted)
+  --world-seed S          explore, demos: generator seed of the first world (default 1000)
+  --episodes-per-world K  explore, demos: episodes per world, one per start/goal pair, 1..10
+                          (default 10)
   --max-episode-s T       explore: longest episode in simulated seconds (default 300)
   --from BATCH_DIR        failures: a vb_batch results directory (trials/*.json, else index.csv)
   --window-s W            failures: seconds before the trial's end to keep (default 10)
   --time-limit T          failures: the trials' time limit when BATCH_DIR has no settings.txt
-                          (a committed report keeps only index.csv; default 60)
+                          (a committed report keeps only index.csv; default 60); demos: the
+                          trials' time limit (default 60, the benchmark's)
+  --system NAME           demos: the expert (default oracle; any vb_run --system name)
   --tasks DIR             failures: where task files are found by name when a recorded path
                           does not exist (default: vb's tasks/, as vb_batch finds it)
-  --vehicle NAME          data/vehicles/NAME.yaml (explore; default hmmwv)
+  --vehicle NAME          data/vehicles/NAME.yaml (explore, demos; default hmmwv)
   --soil NAME             data/soils/NAME.yaml for deformable patches (default verti_bench)
   --sample-period S       seconds between samples, a whole number of 5 ms steps (default 0.1)
   --crops LIST            egocentric crops per sample: elevation, semantics, occupancy, friction
@@ -78,6 +88,7 @@ Options ParseArgs(int argc, char** argv) {
     else if (a == "--from") o.from_dir = args.Value();
     else if (a == "--time-limit") o.time_limit_s = args.PositiveValueAtMost(kMaxS);
     else if (a == "--tasks") o.tasks_dir = args.Value();
+    else if (a == "--system") o.system = args.Value();
     else if (a == "--window-s") o.window_s = args.PositiveValueAtMost(kMaxS);
     else if (a == "--vehicle") o.vehicle = args.Value();
     else if (a == "--soil") o.soil = args.Value();
@@ -94,19 +105,22 @@ Options ParseArgs(int argc, char** argv) {
       o.mode = a;
       have_mode = true;
     } else {
-      throw vb::InputError("", 0, a, "unexpected argument (one mode: explore | failures)");
+      throw vb::InputError("", 0, a,
+                           "unexpected argument (one mode: explore | failures | demos)");
     }
   }
   if (o.help) return o;
-  if (o.mode != "explore" && o.mode != "failures") {
+  if (o.mode != "explore" && o.mode != "failures" && o.mode != "demos") {
     const std::string what =
         o.mode.empty() ? std::string("missing") : "'" + o.mode + "' is not valid";
-    throw vb::InputError("", 0, "mode", what + "; one of explore | failures (see --help)");
+    throw vb::InputError("", 0, "mode",
+                         what + "; one of explore | failures | demos (see --help)");
   }
   if (o.out_dir.empty()) throw vb::InputError("", 0, "--out", "required (see --help)");
   if (o.mode == "failures" && o.from_dir.empty()) {
     throw vb::InputError("", 0, "--from", "required in failures mode (see --help)");
   }
+  if (o.mode == "demos") vb::runner::ValidateSystemName(o.system, "--system");
   if (o.tasks_dir.empty()) o.tasks_dir = vb::io::TasksDir();
   if (o.dataset_id.empty()) o.dataset_id = "vb/" + o.mode + "-v0";
   vb::batch::ParseShard(o.shard);   // validates

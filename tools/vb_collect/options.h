@@ -12,10 +12,10 @@ namespace vb_collect {
 extern const char* const kUsage;
 
 struct Options {
-  std::string mode;                 // explore | failures
+  std::string mode;                 // explore | failures | demos
   std::string out_dir;
   std::string dataset_id;           // default vb/<mode>-v0
-  // explore
+  // explore, demos
   long episodes = 10;
   uint64_t world_seed = 1000;       // first generator seed (the benchmark uses 0..99)
   int episodes_per_world = 10;      // <= 10: one per start/goal pair
@@ -23,8 +23,11 @@ struct Options {
   // failures
   std::string from_dir;             // a vb_batch results directory
   double window_s = 10.0;
-  double time_limit_s = 60.0;       // when the results directory has no settings.txt
+  double time_limit_s = 60.0;       // failures: when the results directory has no settings.txt;
+                                    // demos: the trials' limit
   std::string tasks_dir;            // task files by name when a recorded path does not exist
+  // demos
+  std::string system = "oracle";
   // common
   std::string vehicle = "hmmwv";
   std::string soil = "verti_bench";

@@ -20,6 +20,7 @@
 #include "vb/controllers/controller.h"
 #include "vb/engine/error.h"
 #include "vb/engine/runner/episode.h"
+#include "vb/engine/runner/systems.h"
 
 namespace {
 
@@ -35,7 +36,9 @@ options:
                      $VB_DATA_DIR/policies; docs/learning.md), wmvct, mppi6, tal, tnt (the
                      hybrid baselines: learned models from $VB_DATA_DIR/models), eh_original,
                      mppi_original (the original code's variants, docs/baselines.md), straight
-                     (PID steering at the goal, not the path: a reference)
+                     (PID steering at the goal, not the path: a reference), oracle (the
+                     privileged expert that plans with vb's own physics; budget variants
+                     oracle-h<s>-r<s>-n<k>-e<0|1>, docs/baselines.md)
   --soil NAME        soil parameters $VB_DATA_DIR/soils/NAME.yaml for tasks with mud, sand or
                      snow patches (default: verti_bench, the original's three soils)
   --perception NAME  what the system sees: none (ground truth, default), a preset of
@@ -132,11 +135,7 @@ int Run(const Options& o) {
     throw vb::InputError("", 0, "--vehicle", "unknown vehicle '" + o.vehicle + "' in " + data_dir +
                                                  "/vehicles; valid: " + vb::io::JoinNames(vehicles));
   }
-  const std::vector<std::string> systems = vb::controllers::ControllerNames();
-  if (std::find(systems.begin(), systems.end(), o.system) == systems.end()) {
-    throw vb::InputError("", 0, "--system",
-                         "unknown system '" + o.system + "'; valid: " + vb::io::JoinNames(systems));
-  }
+  vb::runner::ValidateSystemName(o.system, "--system");
   // Checked against the listing even when the task needs no soil: a typo is an error either way,
   // and a name can never reach outside soils/.
   const std::vector<std::string> soils = vb::io::SoilNames(data_dir);

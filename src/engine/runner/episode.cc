@@ -642,5 +642,9 @@ const vehicles::VehicleState& Episode::vehicle_state() const {
 }
 const EpisodeRules& Episode::rules() const { return impl_->rules; }
 const terrain::TaskSpec& Episode::task() const { return impl_->task; }
+const vehicles::VehicleParams& Episode::vehicle_params() const { return impl_->vehicle_params; }
+const soil::SoilConfig* Episode::soil_config() const {
+  return impl_->soil_config ? &*impl_->soil_config : nullptr;
+}
 
 }  // namespace vb::runner

@@ -1,5 +1,5 @@
-// RunTrial: a short loop over Episode with the controller named by the trial spec, called every
-// physics step (the original's 200 Hz loop; controllers keep their own rates inside).
+// RunTrial: a short loop over Episode with the system named by the trial spec (systems.h), called
+// every physics step (the original's 200 Hz loop; controllers keep their own rates inside).
 #include <chrono>
 #include <cstdio>
 #include <exception>
@@ -8,21 +8,11 @@
 
 #include "vb/engine/error.h"
 #include "vb/engine/runner/episode.h"
+#include "vb/engine/runner/systems.h"
 
 namespace vb::runner {
 
 namespace {
-
-std::unique_ptr<controllers::Controller> MakeSystem(const std::string& name,
-                                                  const nn::ModelStore* models) {
-  std::unique_ptr<controllers::Controller> c = controllers::MakeController(name, models);
-  if (c) return c;
-  std::string valid;
-  for (const std::string& n : controllers::ControllerNames()) {
-    valid += (valid.empty() ? "" : ", ") + n;
-  }
-  throw InputError("", 0, "system", "unknown system '" + name + "'; valid: " + valid);
-}
 
 std::string Fmt(double x) {
   char buf[32];
@@ -37,8 +27,9 @@ TrialResult RunTrial(const terrain::TaskSpec& task, const vehicles::VehicleParam
                      const soil::SoilConfig* soil, const nn::ModelStore* models) {
   using Clock = std::chrono::steady_clock;
   const auto wall_start = Clock::now();
+  ValidateSystemName(spec.system);
   Episode episode(task, vehicle, rules, soil);
-  std::unique_ptr<controllers::Controller> controller = MakeSystem(spec.system, models);
+  std::unique_ptr<controllers::Controller> controller = MakeSystem(spec.system, episode, models);
   episode.SetObservationConfig(controller->observation_config());
   episode.Reset(spec);
   controller->Reset(episode.context());

@@ -201,6 +201,9 @@ class Episode {
   const vehicles::VehicleState& vehicle_state() const;
   const EpisodeRules& rules() const;
   const terrain::TaskSpec& task() const;
+  const vehicles::VehicleParams& vehicle_params() const;
+  // The soil parameters given at construction, nullptr if none.
+  const soil::SoilConfig* soil_config() const;
 
  private:
   struct Impl;
