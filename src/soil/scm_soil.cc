@@ -117,6 +117,7 @@ struct ScmSoil::Impl {
   struct Contact {
     int i, j;
     double flow_m;   // plastic sinkage increment (vertical) this step
+    Node* node;      // the node at (i, j) (tiles never move while they exist)
   };
   struct Patch {
     size_t begin, end;
@@ -157,6 +158,26 @@ struct ScmSoil::Impl {
       tile_index[t] = idx;
     }
     return &tiles[static_cast<size_t>(idx)]->nodes[(lj & kTileMask) * kTileSize + (li & kTileMask)];
+  }
+
+  // The 4-neighbour e (+i, -i, +j, -j) of node n at (i, j): inside n's tile by pointer offset
+  // (the hot path of the rim and erosion passes), else through At. Same node as At(ni, nj, ...).
+  Node* Neighbour(Node* n, int i, int j, int e, bool allocate) {
+    const int li = (i - i_min) & kTileMask, lj = (j - j_min) & kTileMask;
+    switch (e) {
+      case 0:
+        if (li != kTileMask && i < i_max) return n + 1;
+        return At(i + 1, j, allocate);
+      case 1:
+        if (li != 0) return n - 1;
+        return At(i - 1, j, allocate);
+      case 2:
+        if (lj != kTileMask && j < j_max) return n + kTileSize;
+        return At(i, j + 1, allocate);
+      default:
+        if (lj != 0) return n - kTileSize;
+        return At(i, j - 1, allocate);
+    }
   }
 
   int32_t Allocate(int tx, int ty) {
@@ -366,7 +387,7 @@ WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
     torque += w.cross(f);
     n.contact_step = m.step;
     sinkage = std::max(sinkage, ca * (n.base_m - h.p.z()));
-    m.contacts.push_back({h.i, h.j, flow});
+    m.contacts.push_back({h.i, h.j, flow, h.node});
   }
   m.patches.push_back({begin, m.contacts.size(), c, a, r, half_w});
   m.stats.contact_nodes += static_cast<long>(m.hits.size());
@@ -511,18 +532,35 @@ TrackSoilOutput ScmSoil::TrackContact(const TrackSoilInput& tr, double dt) {
       // BeltBottomAt inlined along the row (t, l and the height are linear in x)
       const double t_row = uy * sy / len2, l_row = uy * ly;
       const double tilt = lat.z() / lat_h;
-      for (int i = i0; i <= i1; ++i) {
-        const double ux = i * m.dx - a.x();
-        const double t = t_row + ux * sx / len2;
-        const double l = l_row + ux * lx;
-        if (std::abs(l) > hw_scan || t < 0.0 || t > t_end) continue;
-        const double hit_z = a.z() + t * dz + l * tilt;
-        const double cover = std::min(1.0, (half_w - std::abs(l)) / m.dx + 0.5);
-        if (!(cover > 0.0)) continue;
-        Node* node = m.At(i, j, true);
-        if (node == nullptr || node->slot < 0) continue;
-        if (hit_z >= Level(*node)) continue;
-        m.hits.push_back({node, i, j, Vec3(i * m.dx, j * m.dx, hit_z), l, t, cover});
+      const double dx = m.dx, ax = a.x(), az = a.z();   // locals: no reloads after push_back
+      // The row tile by tile: one look-up per tile (the first node in it that the belt covers),
+      // the others by pointer offset.
+      int i = i0;
+      while (i <= i1) {
+        const int chunk_end =
+            std::min(i1, m.i_min + (((i - m.i_min) >> kTileBits) + 1) * kTileSize - 1);
+        Node* base = nullptr;
+        int base_i = 0;
+        bool looked_up = false;
+        for (; i <= chunk_end; ++i) {
+          const double ux = i * dx - ax;
+          const double t = t_row + ux * sx / len2;
+          const double l = l_row + ux * lx;
+          if (std::abs(l) > hw_scan || t < 0.0 || t > t_end) continue;
+          const double cover = std::min(1.0, (half_w - std::abs(l)) / dx + 0.5);
+          if (!(cover > 0.0)) continue;
+          if (!looked_up) {
+            base = m.At(i, j, true);
+            base_i = i;
+            looked_up = true;
+          }
+          if (base == nullptr) continue;   // outside the world
+          Node* node = base + (i - base_i);  // beyond i_max: a rigid node (slot -1), skipped
+          if (node->slot < 0) continue;
+          const double hit_z = az + t * dz + l * tilt;
+          if (hit_z >= Level(*node)) continue;
+          m.hits.push_back({node, i, j, Vec3(i * dx, j * dx, hit_z), l, t, cover});
+        }
       }
     }
     if (m.hits.empty()) continue;
@@ -586,7 +624,7 @@ TrackSoilOutput ScmSoil::TrackContact(const TrackSoilInput& tr, double dt) {
       const double sink = ca * (nd.base_m - h.p.z());
       out.point_sinkage_m[k] = std::max(out.point_sinkage_m[k], sink);
       out.point_sinkage_m[k + 1] = std::max(out.point_sinkage_m[k + 1], sink);
-      m.contacts.push_back({h.i, h.j, flow});
+      m.contacts.push_back({h.i, h.j, flow, h.node});
     }
     Impl::Patch patch{begin, m.contacts.size(), a, lat, 0.0, half_w};
     patch.belt = true;
@@ -611,7 +649,7 @@ void ScmSoil::EndStep(double /*dt*/) {
         volume += ct.flow_m;
         const int di[4] = {1, -1, 0, 0}, dj[4] = {0, 0, 1, -1};
         for (int e = 0; e < 4; ++e) {
-          Node* nb = m.At(ct.i + di[e], ct.j + dj[e], true);
+          Node* nb = m.Neighbour(ct.node, ct.i, ct.j, e, true);
           if (nb == nullptr || nb->slot < 0 || nb->contact_step == m.step ||
               nb->mark_step == m.step) {
             continue;
@@ -661,13 +699,14 @@ void ScmSoil::Impl::Erode(const BulldozingParams& bp) {
       Node* n = At(w.i, w.j, false);
       ++stats.eroded_node_visits;
       if (n->slot < 0 || n->contact_step == step) continue;
+      double level_n = Level(*n);
       for (int e = 0; e < 4; ++e) {
         const int ni = w.i + di[e], nj = w.j + dj[e];
-        // one tile look-up for the neighbour's level and, if it moves, the node itself (its
-        // tile is allocated only then: most neighbours are within the threshold)
-        Node* nb = At(ni, nj, false);
+        // one look-up for the neighbour's level and, if it moves, the node itself (its tile is
+        // allocated only then: most neighbours are within the threshold)
+        Node* nb = Neighbour(n, w.i, w.j, e, false);
         const double dy =
-            Level(*n) - (nb != nullptr ? Level(*nb) : terrain.Height(ni * dx, nj * dx));
+            level_n - (nb != nullptr ? Level(*nb) : terrain.Height(ni * dx, nj * dx));
         if (std::abs(dy) <= threshold) continue;
         if (nb == nullptr) nb = At(ni, nj, true);
         if (nb == nullptr || nb->slot < 0 || nb->contact_step == step) continue;
@@ -675,6 +714,7 @@ void ScmSoil::Impl::Erode(const BulldozingParams& bp) {
         const double moved = dy > 0.0 ? q : -q;  // from the higher node to the lower one
         Raise(n, -moved);
         Raise(nb, moved);
+        level_n = Level(*n);
         if (q > kErosionSettled_m) {
           enqueue(&next, n, w.i, w.j, w.ring);
           if (w.ring < bp.erosion_propagations) enqueue(&next, nb, ni, nj, w.ring + 1);
