@@ -62,7 +62,7 @@ TrackRunningGear::TrackRunningGear(const VehicleParams& params, const Vec3& com_
       arm.parent = -1;
       arm.joint = engine::JointType::kRevolute;
       arm.axis_P = Vec3::UnitY();
-      const Vec3 wheel_B(tp_.road_wheel_x_m[k], y, tp_.road_wheel_z_m);
+      const Vec3 wheel_B(RoadWheelX(s, k), y, tp_.road_wheel_z_m);
       arm.parent_com_to_joint_P = wheel_B + tp_.arm_pivot_offset_B - com_B;
       arm.joint_to_com_L = com_from_pivot;
       arm.mass_kg = m_aw;
@@ -74,50 +74,48 @@ TrackRunningGear::TrackRunningGear(const VehicleParams& params, const Vec3& com_
     }
   }
 
-  // Belt at design: rest length from the tensioner's preload; torsion preloads that hold the
-  // arms at design under the static load on flat ground (unless the file gives one).
-  BeltLoop loop;
-  loop.n = n_rw_ + 2;
-  loop.centre[0] = Vec2(tp_.sprocket_B.x(), tp_.sprocket_B.z());
-  for (int k = 0; k < n_rw_; ++k) loop.centre[k + 1] = Vec2(tp_.road_wheel_x_m[k], tp_.road_wheel_z_m);
-  loop.centre[n_rw_ + 1] = Vec2(tp_.idler_B.x(), tp_.idler_B.z());
-  Vec2 grad[kMaxBeltWheels];
-  const double length = BeltLength(loop, grad);
-  const Vec2 idler_dir = Vec2(tp_.idler_B.x() < tp_.sprocket_B.x() ? -1.0 : 1.0, 0.0);
-  const double dl_ds = grad[n_rw_ + 1].dot(idler_dir);
-  VB_DEMAND(dl_ds > 1e-3);
-  const double tension = tp_.tensioner_preload_n / dl_ds;
-  belt_rest_length_m_ = length - tension / tp_.belt_stiffness_npm;
-
+  // Belt at design, per side (the right side's road wheels may sit at other x): rest length
+  // from the tensioner's preload; torsion preloads that hold the arms at design under the static
+  // load on flat ground (unless the file gives one); rigid-contact samples per ground-run segment.
   vehicle_mass_kg_ = params.chassis.mass_kg;
   for (const engine::MultiBodyLinkSpec& l : *links) vehicle_mass_kg_ += l.mass_kg;
   const double wheel_load_n = vehicle_mass_kg_ * kGravity / (2.0 * n_rw_);
-  for (int k = 0; k < n_rw_; ++k) {
-    if (tp_.torsion_preload_nm != 0.0) {
-      preload_nm_[k] = tp_.torsion_preload_nm;
-      continue;
-    }
-    // torque balance at angle 0: preload + belt pull + ground load + the arm's own weight = 0
-    const Vec2 rate = RotationRate(wheel_from_pivot);
-    const double belt = -tension * grad[k + 1].dot(rate);
-    const double ground = wheel_load_n * rate.y();
-    const double weight = -m_aw * kGravity * RotationRate(com_from_pivot).y();
-    preload_nm_[k] = -(belt + ground + weight);
-  }
-
-  // Rigid-contact samples per ground-run segment (at design length).
   const double spacing = tp_.contact_spacing_m;
   int offset = 0;
-  for (int k = 0; k + 1 < n_rw_ + 2; ++k) {
-    const Vec2 a = loop.centre[k], b = loop.centre[k + 1];
-    const double len = (b - a).norm();
-    samples_per_segment_[k] = std::max(1, static_cast<int>(std::ceil(len / spacing)));
-    sample_offset_[k] = offset;
-    offset += samples_per_segment_[k];
+  for (int s = 0; s < 2; ++s) {
+    BeltLoop loop;
+    loop.n = n_rw_ + 2;
+    loop.centre[0] = Vec2(tp_.sprocket_B.x(), tp_.sprocket_B.z());
+    for (int k = 0; k < n_rw_; ++k) loop.centre[k + 1] = Vec2(RoadWheelX(s, k), tp_.road_wheel_z_m);
+    loop.centre[n_rw_ + 1] = Vec2(tp_.idler_B.x(), tp_.idler_B.z());
+    Vec2 grad[kMaxBeltWheels];
+    const double length = BeltLength(loop, grad);
+    const Vec2 idler_dir = Vec2(tp_.idler_B.x() < tp_.sprocket_B.x() ? -1.0 : 1.0, 0.0);
+    const double dl_ds = grad[n_rw_ + 1].dot(idler_dir);
+    VB_DEMAND(dl_ds > 1e-3);
+    const double tension = tp_.tensioner_preload_n / dl_ds;
+    belt_rest_length_m_[s] = length - tension / tp_.belt_stiffness_npm;
+    state_.tension_n[s] = tension;
+    for (int k = 0; k < n_rw_; ++k) {
+      if (tp_.torsion_preload_nm != 0.0) {
+        preload_nm_[s][k] = tp_.torsion_preload_nm;
+        continue;
+      }
+      // torque balance at angle 0: preload + belt pull + ground load + the arm's own weight = 0
+      const Vec2 rate = RotationRate(wheel_from_pivot);
+      const double belt = -tension * grad[k + 1].dot(rate);
+      const double ground = wheel_load_n * rate.y();
+      const double weight = -m_aw * kGravity * RotationRate(com_from_pivot).y();
+      preload_nm_[s][k] = -(belt + ground + weight);
+    }
+    for (int k = 0; k + 1 < n_rw_ + 2; ++k) {
+      const double len = (loop.centre[k + 1] - loop.centre[k]).norm();
+      samples_per_segment_[s][k] = std::max(1, static_cast<int>(std::ceil(len / spacing)));
+      sample_offset_[s][k] = offset;
+      offset += samples_per_segment_[s][k];
+    }
   }
-  samples_per_side_ = offset;
-  state_.bristle_W.assign(static_cast<size_t>(2 * samples_per_side_), Vec3::Zero());
-  state_.tension_n[0] = state_.tension_n[1] = tension;
+  state_.bristle_W.assign(static_cast<size_t>(offset), Vec3::Zero());
   sprocket_speeds_.assign(2, 0.0);
   sprocket_torques_.assign(2, 0.0);
   driven_.assign(2, true);
@@ -130,6 +128,11 @@ void TrackRunningGear::Attach(engine::PhysicsWorld* world, engine::MultiBodyId b
 
 double TrackRunningGear::SprocketSpeed(int side) const {
   return world_->JointVelocity(body_, sides_[side].sprocket_link);
+}
+
+double TrackRunningGear::RoadWheelX(int side, int k) const {
+  return tp_.road_wheel_x_m[static_cast<size_t>(k)] +
+         (side == 1 ? tp_.right_road_wheel_offset_x_m : 0.0);
 }
 
 double TrackRunningGear::ArmAngle(int side, int wheel) const {
@@ -199,7 +202,7 @@ void TrackRunningGear::SynchronizeSide(int s, const DriverInputs& inputs,
     const double g = grad[idler].dot(idler_dir);
     const double kt = tp_.tensioner_stiffness_npm, kb = tp_.belt_stiffness_npm;
     const double cdt = tp_.tensioner_damping_nspm / dt;
-    const double slack0 = l_old - g * s_old - belt_rest_length_m_;  // belt stretch at s = 0
+    const double slack0 = l_old - g * s_old - belt_rest_length_m_[s];  // belt stretch at s = 0
     double s_new = (tp_.tensioner_preload_n + cdt * s_old - kb * g * slack0) / (kt + cdt + kb * g * g);
     if (slack0 + g * s_new < 0.0) s_new = (tp_.tensioner_preload_n + cdt * s_old) / (kt + cdt);
     s_new = std::clamp(s_new, -kIdlerTravel_m, kIdlerTravel_m);
@@ -208,7 +211,7 @@ void TrackRunningGear::SynchronizeSide(int s, const DriverInputs& inputs,
     loop.centre[idler] += (s_new - s_old) * idler_dir;
   }
   const double length = BeltLength(loop, grad);
-  const double tension = tp_.belt_stiffness_npm * std::max(0.0, length - belt_rest_length_m_);
+  const double tension = tp_.belt_stiffness_npm * std::max(0.0, length - belt_rest_length_m_[s]);
   state_.tension_n[s] = tension;
   const Vec2 pivot_offset(tp_.arm_pivot_offset_B.x(), tp_.arm_pivot_offset_B.z());
   const double m_aw = tp_.arm_mass_kg + tp_.road_wheel_mass_kg;
@@ -217,12 +220,12 @@ void TrackRunningGear::SynchronizeSide(int s, const DriverInputs& inputs,
   const double arm_inertia = m_aw * lever * lever + tp_.arm_inertia_kgm2.y();
   for (int k = 0; k < n_rw_; ++k) {
     const int link = side.arm_link[k];
-    const Vec2 pivot = Vec2(tp_.road_wheel_x_m[k], tp_.road_wheel_z_m) + pivot_offset;
+    const Vec2 pivot = Vec2(RoadWheelX(s, k), tp_.road_wheel_z_m) + pivot_offset;
     const Vec2 d = loop.centre[k + 1] - pivot;
     const double belt = -tension * grad[k + 1].dot(Vec2(d.y(), -d.x()));
     const double q = world_->JointPosition(body_, link);
     const double qd = world_->JointVelocity(body_, link);
-    double torque = preload_nm_[k] - tp_.torsion_stiffness_nmprad * q -
+    double torque = preload_nm_[s][k] - tp_.torsion_stiffness_nmprad * q -
                     ImplicitDamping(tp_.torsion_damping_nmsprad, dt, arm_inertia) * qd + belt;
     if (q > tp_.bump_angle_rad) torque -= tp_.stop_stiffness_nmprad * (q - tp_.bump_angle_rad);
     if (q < -tp_.rebound_angle_rad) {
@@ -297,8 +300,8 @@ void TrackRunningGear::SynchronizeSide(int s, const DriverInputs& inputs,
   double total_len = 0.0;
   for (int k = 0; k + 1 < n_pts; ++k) total_len += (run_[k].p_W - run_[k + 1].p_W).norm();
   for (int k = 0; k + 1 < n_pts; ++k) {
-    const int n_s = samples_per_segment_[k];
-    Vec3* bristles = &state_.bristle_W[static_cast<size_t>(s * samples_per_side_ + sample_offset_[k])];
+    const int n_s = samples_per_segment_[s][k];
+    Vec3* bristles = &state_.bristle_W[static_cast<size_t>(sample_offset_[s][k])];
     if (on_soil[k]) {
       for (int m = 0; m < n_s; ++m) bristles[m].setZero();
       continue;

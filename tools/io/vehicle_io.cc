@@ -569,7 +569,8 @@ vehicles::TrackParams ReadTracks(const StrictNode& node) {
        "sprocket_B", "sprocket_radius_m", "sprocket_mass_kg", "sprocket_inertia_kgm2",
        "brake_torque_nm", "idler_B", "idler_radius_m", "idler_mass_kg", "idler_inertia_kgm2",
        "tensioner_free_length_m", "tensioner_preload_n", "tensioner_stiffness_npm",
-       "tensioner_damping_nspm", "tensioner_carrier_mass_kg", "road_wheel_x_m", "road_wheel_z_m",
+       "tensioner_damping_nspm", "tensioner_carrier_mass_kg", "road_wheel_x_m",
+       "right_road_wheel_offset_x_m", "road_wheel_z_m",
        "road_wheel_radius_m", "road_wheel_width_m", "road_wheel_mass_kg",
        "road_wheel_inertia_kgm2", "arm_pivot_offset_B", "arm_mass_kg", "arm_inertia_kgm2",
        "torsion_stiffness_nmprad", "torsion_damping_nmsprad", "torsion_preload_nm",
@@ -612,6 +613,14 @@ vehicles::TrackParams ReadTracks(const StrictNode& node) {
   const double rear = std::min(t.sprocket_B.x(), t.idler_B.x());
   if (!(t.road_wheel_x_m.front() < front && t.road_wheel_x_m.back() > rear)) {
     xs.Fail("the road wheels must lie between the sprocket and the idler");
+  }
+  if (m.Has("right_road_wheel_offset_x_m")) {
+    const StrictNode off = m.Required("right_road_wheel_offset_x_m");
+    t.right_road_wheel_offset_x_m = off.AsDouble();
+    const double o = t.right_road_wheel_offset_x_m;
+    if (!(t.road_wheel_x_m.front() + o < front && t.road_wheel_x_m.back() + o > rear)) {
+      off.Fail("the right side's road wheels must lie between the sprocket and the idler");
+    }
   }
   t.road_wheel_z_m = m.Required("road_wheel_z_m").AsDouble();
   t.road_wheel_radius_m = m.Required("road_wheel_radius_m").AsPositive();

@@ -71,7 +71,9 @@ class TrackRunningGear {
   double ArmAngle(int side, int wheel) const;
   // Ground force along the belt on one track in the last Synchronize (N, + forward): the thrust.
   double GroundThrust(int side) const { return thrust_n_[side]; }
-  double TorsionPreload(int wheel) const { return preload_nm_[wheel]; }
+  double TorsionPreload(int side, int wheel) const { return preload_nm_[side][wheel]; }
+  // Road-wheel station k of a side at design (chassis x; the right side's may be offset).
+  double RoadWheelX(int side, int k) const;
   int num_road_wheels() const { return n_rw_; }
 
  private:
@@ -99,12 +101,11 @@ class TrackRunningGear {
   int n_rw_ = 0;
   Side sides_[2];
   Vec3 wheel_from_com_L_[kMaxRoadWheels];   // road-wheel centre from the arm link's COM
-  double preload_nm_[kMaxRoadWheels] = {};
-  double belt_rest_length_m_ = 0.0;
+  double preload_nm_[2][kMaxRoadWheels] = {};
+  double belt_rest_length_m_[2] = {0.0, 0.0};
   double vehicle_mass_kg_ = 0.0;
-  int samples_per_segment_[kMaxBeltWheels] = {};
-  int sample_offset_[kMaxBeltWheels] = {};
-  int samples_per_side_ = 0;
+  int samples_per_segment_[2][kMaxBeltWheels] = {};
+  int sample_offset_[2][kMaxBeltWheels] = {};   // into state_.bristle_W (both sides)
   State state_;
   double thrust_n_[2] = {0.0, 0.0};
   // Per-step scratch.

@@ -254,6 +254,9 @@ struct TrackParams {
   // Road wheels: centres at design (front to rear), radius, width, mass, spin inertia; each on a
   // trailing arm whose chassis pivot is at wheel centre + arm_pivot_offset_B (x, z).
   std::vector<double> road_wheel_x_m;
+  // The right side's road wheels (with their arm pivots) sit this far along x from the left's
+  // (Chrono's M113: -0.085 m, the torsion bars pass each other under the hull).
+  double right_road_wheel_offset_x_m = 0.0;
   double road_wheel_z_m = 0.0;
   double road_wheel_radius_m = 0.0;
   double road_wheel_width_m = 0.0;
