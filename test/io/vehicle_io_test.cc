@@ -358,6 +358,11 @@ TEST_F(VehicleFitTest, TrackedVehicleLoadsWithItsStations) {
                  "", "tracks.road_wheel_x_m[1]", "road wheels must be listed front to rear");
   ExpectFitError("m113", "idler_B: [-1.9615", "idler_B: [1.8", 0, "", "tracks.idler_B",
                  "the idler must be at least 0.5 m from the sprocket");
+  // the right side's stations (Chrono: 0.085 m behind the left's) must fit too
+  EXPECT_DOUBLE_EQ(v.tracks.right_road_wheel_offset_x_m, -0.085);
+  ExpectFitError("m113", "right_road_wheel_offset_x_m: -0.085", "right_road_wheel_offset_x_m: -0.7",
+                 0, "", "tracks.right_road_wheel_offset_x_m",
+                 "the right side's road wheels must lie between the sprocket and the idler");
 }
 
 TEST_F(VehicleFitTest, SteeringMustFitTheSteeredAxles) {
