@@ -1,6 +1,7 @@
 // vb_collect: datasets for learning (docs/datasets.md). This file: the output directory (lock,
 // settings), resume, shards, worker processes, and the assembly into Minari's layout; the modes
-// (explore.cc, failures.cc, demos.cc, teleop.cc) record episodes with the dataset library (vb/dataset).
+// (explore.cc, failures.cc, demos.cc, teleop.cc) record episodes with the dataset library
+// (vb/dataset).
 #include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>

@@ -99,7 +99,6 @@ Recording ReadRecording(const std::string& path) {
   r.csv_path = path.substr(0, path.size() - 5) + "_traj.csv";
   const std::string problem = vb::io::TrajectoryProblem(r.csv_path, r.row);
   if (!problem.empty()) throw vb::InputError(path, 0, "trajectory_samples", problem);
-  std::error_code ec;
   const std::string bytes = ReadWhole(path) + ReadWhole(r.csv_path);
   char hex[17];
   std::snprintf(hex, sizeof(hex), "%016llx",
@@ -234,9 +233,8 @@ std::vector<std::vector<double>> ReadTrajectory(const Recording& rec, double ste
     }
     rows.push_back(std::move(v));
   }
-  if (rows.size() < 2) {
-    throw vb::InputError(rec.csv_path, 0, "", "the drive has no step (fewer than 2 samples)");
-  }
+  // A drive stopped right after its start has only the start sample: an empty episode.
+  if (rows.empty()) throw vb::InputError(rec.csv_path, 0, "", "no samples");
   return rows;
 }
 
