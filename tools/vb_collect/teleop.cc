@@ -152,7 +152,10 @@ std::vector<std::string> RecordingFiles(const std::vector<std::string>& args) {
 vb::terrain::TaskSpec FindTask(const Recording& rec, const std::string& tasks_dir) {
   std::vector<std::string> candidates =
       vb::io::TaskFileCandidates(rec.row.task_file, rec.json_path, tasks_dir);
-  candidates.push_back((fs::path(tasks_dir) / (rec.row.task + ".yaml")).string());
+  const std::string by_name = (fs::path(tasks_dir) / (rec.row.task + ".yaml")).string();
+  if (std::find(candidates.begin(), candidates.end(), by_name) == candidates.end()) {
+    candidates.push_back(by_name);
+  }
   std::string mismatch, tried;
   for (const std::string& path : candidates) {
     tried += (tried.empty() ? "" : ", ") + path;
