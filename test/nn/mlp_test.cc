@@ -52,10 +52,10 @@ TEST(Mlp, BatchEqualsSingleBitForBit) {
   const TensorSet set = io::ReadSafetensors(kFixture);
   const Mlp mlp(set, "net", FixtureActivations(set));
   const Tensor& in = set.at("inputs");
-  Eigen::MatrixXf batch(11, 5);
+  BatchMatrix batch(11, 5);
   for (int s = 0; s < 5; ++s)
     for (int i = 0; i < 11; ++i) batch(i, s) = in.data[11 * s + i];
-  Eigen::MatrixXf out;
+  BatchMatrix out;
   mlp.ForwardBatch(batch, out);
   ASSERT_EQ(out.rows(), 3);
   ASSERT_EQ(out.cols(), 5);
