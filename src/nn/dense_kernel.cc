@@ -9,6 +9,9 @@
 // target("avx2") does not enable FMA instructions either.
 #include "vb/nn/dense_kernel.h"
 
+#include <cstdlib>
+#include <string>
+
 #include "vb/engine/error.h"
 
 namespace vb::nn {
@@ -168,7 +171,15 @@ bool KernelIsaAvailable(KernelIsa isa) {
   return isa == KernelIsa::kBaseline || (isa == KernelIsa::kAvx2 && CpuHasAvx2());
 }
 
-KernelIsa BestKernelIsa() { return CpuHasAvx2() ? KernelIsa::kAvx2 : KernelIsa::kBaseline; }
+KernelIsa BestKernelIsa() {
+  // VB_NN_KERNEL=baseline forces the SSE2 path (to measure what a CPU without AVX2 gets; the
+  // results are the same bits either way)
+  static const bool forced_baseline = [] {
+    const char* v = std::getenv("VB_NN_KERNEL");
+    return v != nullptr && std::string(v) == "baseline";
+  }();
+  return CpuHasAvx2() && !forced_baseline ? KernelIsa::kAvx2 : KernelIsa::kBaseline;
+}
 
 const char* KernelIsaName(KernelIsa isa) {
   return isa == KernelIsa::kAvx2 ? "avx2" : "baseline (sse2)";

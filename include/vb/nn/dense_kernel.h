@@ -14,7 +14,8 @@ enum class KernelIsa {
   kAvx2,       // 8 samples per instruction, only when the CPU has AVX2
 };
 
-// The widest path this CPU runs (kAvx2 when __builtin_cpu_supports("avx2")).
+// The widest path this CPU runs (kAvx2 when __builtin_cpu_supports("avx2")), unless the
+// environment variable VB_NN_KERNEL=baseline asks for the SSE2 path.
 KernelIsa BestKernelIsa();
 bool KernelIsaAvailable(KernelIsa isa);
 const char* KernelIsaName(KernelIsa isa);
