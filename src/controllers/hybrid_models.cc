@@ -6,6 +6,7 @@
 #include <string>
 
 #include "vb/engine/error.h"
+#include "vb/terrain/terrain_heights.h"
 
 namespace vb::controllers {
 
@@ -46,7 +47,7 @@ double TerrainShape(const terrain::Terrain& terrain, double x_m, double y_m, dou
       ++i;
     }
   }
-  terrain.Heights(px, py, kTerrainGridPoints, h);
+  terrain::Heights(terrain, px, py, kTerrainGridPoints, h);
   const double centre = h[kTerrainGridCentre];
   for (int j = 0; j < kTerrainGridPoints; ++j) out[j * stride] = static_cast<float>(h[j] - centre);
   return centre;

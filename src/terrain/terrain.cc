@@ -1,4 +1,5 @@
 #include "vb/terrain/terrain.h"
+#include "vb/terrain/terrain_heights.h"
 
 #include <algorithm>
 #include <cmath>
@@ -84,12 +85,14 @@ double Terrain::Height(double x_m, double y_m) const {
                      &dh_du, &dh_dv);
 }
 
-void Terrain::Heights(const double* x_m, const double* y_m, int n, double* out) const {
-  const double half_x = 0.5 * size_x_m_, half_y = 0.5 * size_y_m_;
-  const double* h = grid_.heights_m.data();
-  const int cols = grid_.cols;
+void Heights(const Terrain& terrain, const double* x_m, const double* y_m, int n, double* out) {
+  const HeightGrid& grid = terrain.grid();
+  const double half_x = 0.5 * terrain.size_x_m(), half_y = 0.5 * terrain.size_y_m();
+  const double dx = terrain.spacing_x_m(), dy = terrain.spacing_y_m();
+  const double* h = grid.heights_m.data();
+  const int cols = grid.cols;
   for (int i = 0; i < n; ++i) {
-    const CellCoords p = Locate(grid_, half_x, half_y, dx_, dy_, x_m[i], y_m[i]);
+    const CellCoords p = Locate(grid, half_x, half_y, dx, dy, x_m[i], y_m[i]);
     const double* row0 = h + static_cast<size_t>(p.r) * cols + p.c;
     const double* row1 = row0 + cols;
     // both triangles' planes, as PlaneHeight computes them, then a select

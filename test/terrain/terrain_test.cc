@@ -1,5 +1,6 @@
 // Tests for src/terrain/terrain.cc: the triangulated surface against analytic surfaces.
 #include "vb/terrain/terrain.h"
+#include "vb/terrain/terrain_heights.h"
 
 #include <cmath>
 #include <cstring>
@@ -70,7 +71,7 @@ TEST(TerrainTest, BatchedHeightsEqualHeightBitForBit) {
   x.push_back(std::nan(""));
   y.push_back(1.0);
   std::vector<double> batch(x.size());
-  terrain.Heights(x.data(), y.data(), static_cast<int>(x.size()), batch.data());
+  Heights(terrain, x.data(), y.data(), static_cast<int>(x.size()), batch.data());
   for (size_t i = 0; i < x.size(); ++i) {
     const double one = terrain.Height(x[i], y[i]);
     ASSERT_EQ(0, std::memcmp(&one, &batch[i], sizeof(double))) << "point " << i << " (" << x[i] << ", " << y[i] << ")";

@@ -27,10 +27,6 @@ class Terrain {
 
   // Height of the surface at (x, y); points outside the grid are clamped to the border.
   double Height(double x_m, double y_m) const;
-  // Height at n points: out[i] = Height(x_m[i], y_m[i]) bit for bit, without Height's branch on
-  // the triangle (the planners' terrain features ask for 240,000 scattered heights per update,
-  // and that branch is a coin toss for the CPU's predictor).
-  void Heights(const double* x_m, const double* y_m, int n, double* out) const;
   // Upward unit normal of the triangle under (x, y).
   Vec3 Normal(double x_m, double y_m) const;
   // Height, normal and material in one call (the hot path for wheel contact).
