@@ -1,6 +1,6 @@
 // Batched height queries on a Terrain (terrain.h): the sampling planners' terrain features ask
 // for 240,000 scattered heights per update, and Terrain::Height's branch on the triangle under
-// the point is a coin toss for the CPU's branch predictor.
+// the point depends on where in its cell each point falls: no pattern for a branch predictor.
 #pragma once
 
 #include "vb/terrain/terrain.h"
