@@ -8,6 +8,7 @@ import json
 import math
 import os
 import subprocess
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -112,3 +113,87 @@ def test_minari_loads_the_dataset(collection: Path, monkeypatch: pytest.MonkeyPa
         assert ds.observation_space.contains({k: v[0] for k, v in theirs.observations.items()})
     meta = list(ds.storage.get_episode_metadata([0]))[0]
     assert meta["seed"] == ours[0]["attrs"]["seed"]
+
+
+# Teleoperated demonstrations (docs/datasets.md): the committed vb_view recordings in
+# test/data/teleop, collected with the settings of the committed oracle demonstration sample
+# (docs/results/datasets/demos_sample: 16² crops at 0.25 m, a sample every 0.5 s), have exactly
+# its schema.
+SOURCE = Path(__file__).resolve().parents[2]
+
+
+@pytest.fixture(scope="module")
+def teleop_collection(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    vb_collect = Path(os.environ.get("VB_GYM_BIN", "")).with_name("vb_collect")
+    out = tmp_path_factory.mktemp("teleop") / "vb" / "teleop-v0"
+    subprocess.run([str(vb_collect), "teleop", str(SOURCE / "test" / "data" / "teleop"),
+                    "--out", str(out), "--crop-size", "16", "--crop-res", "0.25",
+                    "--sample-period", "0.5", "--quiet"], check=True, capture_output=True)
+    return out
+
+
+def _schema(group) -> dict:
+    out = {}
+    group.visititems(lambda name, obj: out.__setitem__(name, (obj.dtype.str, obj.shape[1:]))
+                     if hasattr(obj, "dtype") else None)
+    return out
+
+
+def test_teleop_dataset_has_the_demonstrations_schema(teleop_collection: Path) -> None:
+    h5py = pytest.importorskip("h5py")
+    demos = SOURCE / "docs" / "results" / "datasets" / "demos_sample" / "main_data.hdf5"
+    with h5py.File(demos, "r") as d, \
+            h5py.File(teleop_collection / "data" / "main_data.hdf5", "r") as t:
+        assert t.attrs["total_episodes"] == 1            # the success; the stopped drive filtered
+        for key in ("observation_space", "action_space", "vb_action_space"):
+            assert t.attrs[key] == d.attrs[key], key
+        assert set(t.attrs) == set(d.attrs)
+        ep, ref = t["episode_0"], d["episode_0"]
+        assert _schema(ep) == _schema(ref)
+        # Every attribute of a demonstration except the generated world's labels, and the source.
+        world_only = {"world_seed", "elevation", "terrain", "density"}
+        assert set(ref.attrs) - world_only <= set(ep.attrs)
+        assert ep.attrs["source"] == "teleop" and ep.attrs["mode"] == "teleop"
+        assert ep.attrs["operator"] == "scripted"
+        assert ep.attrs["status"] == "success" and bool(ep["terminations"][-1])
+        assert ep.attrs["crops"] == ref.attrs["crops"]
+        assert ep["infos"]["goal_distance_m"][-1] <= 10.0
+
+
+def test_minari_loads_the_teleop_dataset(teleop_collection: Path,
+                                         monkeypatch: pytest.MonkeyPatch) -> None:
+    minari = pytest.importorskip("minari")
+    monkeypatch.setenv("MINARI_DATASETS_PATH", str(teleop_collection.parent.parent))
+    ds = minari.load_dataset("vb/teleop-v0")
+    assert ds.total_episodes == 1
+    (ep,) = list(ds.iterate_episodes())
+    assert ep.actions.shape[1] == 3
+    assert ds.action_space.contains(ep.actions[0])
+    assert ds.observation_space.contains({k: v[0] for k, v in ep.observations.items()})
+    meta = list(ds.storage.get_episode_metadata([0]))[0]
+    assert meta["source"] == "teleop"
+
+
+def test_a_fresh_scripted_drive_through_vb_view_replays(tmp_path: Path) -> None:
+    """The whole chain on this build: vb_view teleop driven over its WebSocket by the scripted
+    driver (the page's key ramps), then vb_collect teleop, which re-simulates the drive and
+    checks it bit for bit (exit 2 otherwise)."""
+    bin_dir = Path(os.environ.get("VB_GYM_BIN", "")).parent
+    rec = tmp_path / "rec"
+    run = subprocess.run([sys.executable, str(SOURCE / "scripts" / "teleop_scripted_drive.py"),
+                          "--vb-view", str(bin_dir / "vb_view"),
+                          "--task", str(SOURCE / "test" / "data" / "teleop" / "teleop_demo.yaml"),
+                          "--out", str(rec), "--operator", "pytest", "W@0-10,D@0.5-0.8"],
+                         capture_output=True, text=True, timeout=120)
+    assert run.returncode == 0, run.stderr
+    assert run.stdout.strip().endswith(": success"), run.stdout
+    out = tmp_path / "ds"
+    # The task lies elsewhere than beside the recording: --tasks names its directory.
+    col = subprocess.run([str(bin_dir / "vb_collect"), "teleop", str(rec), "--out", str(out),
+                          "--tasks", str(SOURCE / "test" / "data" / "teleop"),
+                          "--crop-size", "8", "--crop-res", "0.5", "--quiet"],
+                         capture_output=True, text=True)
+    assert col.returncode == 0, col.stdout + col.stderr
+    (ep,) = list(datasets.episodes(out))
+    assert ep["attrs"]["operator"] == "pytest" and ep["attrs"]["status"] == "success"
+    assert ep["infos"]["position_m"][-1, 0] - ep["infos"]["position_m"][0, 0] > 10.0

@@ -257,7 +257,7 @@ EpisodeRecord RecordEpisode(runner::Episode& episode, SamplePolicy& policy,
     sum = controllers::Command();
   };
 
-  while (!episode.Done()) {
+  while (!episode.Done() && (window.end_step < 0 || episode.physics_steps() < window.end_step)) {
     const long k = episode.physics_steps();
     if (k >= window.first_step && (k - window.first_step) % config.sample_every_steps == 0) {
       take_sample(k, "running");

@@ -1,17 +1,22 @@
 // vb_collect end to end (docs/datasets.md): a tiny exploration dataset collected in full, again
 // (byte-identical: determinism), killed with SIGKILL after its first episode and resumed (the
 // same bytes), as two shards; failure windows of a small vb_batch run that end exactly at each
-// trial's end with its failure label; expert demonstrations that keep only successes; bad input.
+// trial's end with its failure label; expert demonstrations that keep only successes; teleoperated
+// drives (the committed vb_view recordings in test/data/teleop) replayed bit for bit; bad input.
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <map>
+#include <sstream>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -246,6 +251,206 @@ TEST_F(VbCollectTest, DemonstrationsContainOnlySuccesses) {
   EXPECT_EQ(r.FindAttribute("system")->text, "oracle-h1-r0.5-n3");
   EXPECT_EQ(r.FindAttribute("status")->text, "timeout");
   EXPECT_EQ(r.steps, 0);
+}
+
+// The committed recordings (test/data/teleop/README.md): drive_001 reaches the goal, drive_002
+// is stopped by its operator after 2 s.
+const fs::path kTeleopData = fs::path(VB_TEST_DATA_DIR) / "teleop";
+const std::string kTeleopStem = "teleop_demo_p0_s0_hmmwv_teleop";
+
+// The rows of a trajectory CSV as numbers (header skipped).
+std::vector<std::vector<double>> CsvRows(const fs::path& csv) {
+  std::istringstream in(Bytes(csv));
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::vector<double>> rows;
+  while (std::getline(in, line)) {
+    std::vector<double> v;
+    std::istringstream fields(line);
+    std::string f;
+    while (std::getline(fields, f, ',')) v.push_back(std::strtod(f.c_str(), nullptr));
+    rows.push_back(v);
+  }
+  return rows;
+}
+
+// Replaces the first occurrence of `from` in a file by `to`.
+void Edit(const fs::path& file, const std::string& from, const std::string& to) {
+  std::string text = Bytes(file);
+  const size_t at = text.find(from);
+  ASSERT_NE(at, std::string::npos) << from << " not in " << file;
+  text.replace(at, from.size(), to);
+  std::ofstream(file, std::ios::binary) << text;
+}
+
+TEST_F(VbCollectTest, TeleopRecordingsBecomeDemonstrations) {
+  const std::string cmd = kCollect + " teleop " + kTeleopData.string() +
+                          " --crop-size 8 --crop-res 0.5 --quiet ";
+  const Outcome t = Sh(cmd + "--out " + (root_ / "teleop").string());
+  ASSERT_EQ(t.exit_code, 0) << t.output;
+  ASSERT_EQ(CountEpisodes(root_ / "teleop"), 2u);
+  const vb::dataset::EpisodeRecord kept =
+      vb::io::ReadEpisodeFile((root_ / "teleop" / "episodes" / "ep0000000.h5").string());
+  EXPECT_EQ(kept.FindAttribute("status")->text, "success");
+  EXPECT_EQ(kept.FindAttribute("mode")->text, "teleop");
+  EXPECT_EQ(kept.FindAttribute("source")->text, "teleop");
+  EXPECT_EQ(kept.FindAttribute("system")->text, "teleop");
+  EXPECT_EQ(kept.FindAttribute("operator")->text, "scripted");
+  EXPECT_EQ(kept.FindAttribute("failure_type")->text, "");
+  EXPECT_EQ(kept.FindAttribute("action_space_kind")->text, "direct");
+  EXPECT_NE(kept.FindAttribute("recording")->text.find("drive_001/" + kTeleopStem + ".json"),
+            std::string::npos);
+  EXPECT_EQ(kept.FindAttribute("task")->text, "teleop_demo");
+  EXPECT_EQ(kept.FindAttribute("task_file")->text, "teleop/teleop_demo.yaml");
+  EXPECT_EQ(kept.Find("terminations")->i8.back(), 1);
+  EXPECT_LE(kept.Find("infos/goal_distance_m")->f64.back(), 10.0);
+
+  // The episode is the recorded drive: every sample's position and command are the recording's
+  // values at that step, to the bit (a sample every 20 physics steps and at the end).
+  const std::vector<std::vector<double>> rec =
+      CsvRows(kTeleopData / "drive_001" / (kTeleopStem + "_traj.csv"));
+  const vb::dataset::Column& pos = *kept.Find("infos/position_m");
+  const vb::dataset::Column& cmd_col = *kept.Find("infos/command");
+  const size_t samples = pos.Rows();
+  ASSERT_EQ(samples, (rec.size() - 1 + 19) / 20 + 1);
+  for (size_t i = 0; i < samples; ++i) {
+    const size_t k = std::min(i * 20, rec.size() - 1);
+    SCOPED_TRACE(k);
+    EXPECT_EQ(pos.f64[3 * i + 0], rec[k][1]);
+    EXPECT_EQ(pos.f64[3 * i + 1], rec[k][2]);
+    EXPECT_EQ(pos.f64[3 * i + 2], rec[k][3]);
+    if (k > 0) {
+      EXPECT_EQ(cmd_col.f64[3 * i + 0], rec[k][11]);   // throttle applied in step k
+    }
+  }
+  // The driver held W from the start: a real drive forward, not a standstill.
+  EXPECT_GT(pos.f64[3 * (samples - 1)] - pos.f64[0], 2.0);
+
+  // The stopped drive is not a success: filtered out, an empty episode that says why.
+  const vb::dataset::EpisodeRecord filtered =
+      vb::io::ReadEpisodeFile((root_ / "teleop" / "episodes" / "ep0000001.h5").string());
+  EXPECT_EQ(filtered.steps, 0);
+  EXPECT_EQ(filtered.FindAttribute("status")->text, "timeout");
+  EXPECT_NE(filtered.FindAttribute("message")->text.find("filtered out"), std::string::npos);
+  EXPECT_NE(filtered.FindAttribute("message")->text.find("stopped by the operator"),
+            std::string::npos);
+  const auto meta = Bytes(root_ / "teleop" / "data" / "metadata.json");
+  EXPECT_NE(meta.find("\"total_episodes\": 1"), std::string::npos) << meta;
+
+  // --keep-failures keeps it, labelled; the same command twice gives the same bytes.
+  const Outcome k1 = Sh(cmd + "--keep-failures --out " + (root_ / "teleop_all").string());
+  ASSERT_EQ(k1.exit_code, 0) << k1.output;
+  const Outcome k2 = Sh(cmd + "--keep-failures --out " + (root_ / "teleop_all2").string());
+  ASSERT_EQ(k2.exit_code, 0) << k2.output;
+  ExpectSameDataset(root_ / "teleop_all", root_ / "teleop_all2");
+  const vb::dataset::EpisodeRecord stopped =
+      vb::io::ReadEpisodeFile((root_ / "teleop_all" / "episodes" / "ep0000001.h5").string());
+  EXPECT_EQ(stopped.FindAttribute("failure_type")->text, "timeout");
+  EXPECT_EQ(vb::io::ReadEpisodeAttributes(
+                (root_ / "teleop_all" / "episodes" / "ep0000001.h5").string())
+                .at("stopped_by_operator"),
+            "1");
+  const std::vector<std::vector<double>> rec2 =
+      CsvRows(kTeleopData / "drive_002" / (kTeleopStem + "_traj.csv"));
+  EXPECT_EQ(stopped.steps, static_cast<long>((rec2.size() - 1 + 19) / 20));   // about 2 s
+  EXPECT_EQ(stopped.Find("infos/time_s")->f64.back(), rec2.back()[0]);
+  EXPECT_NEAR(rec2.back()[0], 2.0, 0.1);
+  EXPECT_EQ(stopped.Find("truncations")->i8.back(), 1);
+  EXPECT_EQ(stopped.Find("terminations")->i8.back(), 0);
+  const auto meta_all = Bytes(root_ / "teleop_all" / "data" / "metadata.json");
+  EXPECT_NE(meta_all.find("\"total_episodes\": 2"), std::string::npos) << meta_all;
+}
+
+TEST_F(VbCollectTest, BadTeleopRecordingsAreRefusedNamingTheFile) {
+  // A copy of the recordings to spoil (the task is found beside them, as in test/data).
+  const fs::path src = root_ / "teleop_bad" / "teleop";
+  fs::create_directories(src.parent_path());
+  fs::copy(kTeleopData, src, fs::copy_options::recursive);
+  const fs::path json = src / "drive_001" / (kTeleopStem + ".json");
+  const fs::path csv = src / "drive_001" / (kTeleopStem + "_traj.csv");
+  const std::string collect = kCollect + " teleop " + json.string() +
+                              " --crop-size 8 --crop-res 0.5 --quiet --out ";
+  int n = 0;
+  auto run = [&] { return Sh(collect + (root_ / "teleop_bad" / std::to_string(++n)).string()); };
+
+  // Another command in one step: the drive is no longer the recording's.
+  const std::vector<std::vector<double>> rows = CsvRows(csv);
+  std::string text = Bytes(csv);
+  {
+    std::istringstream in(text);
+    std::string line, out;
+    int number = 0;
+    while (std::getline(in, line)) {
+      ++number;
+      if (number == 52) {   // row 50, the command of step 50 (t = 0.25 s): full throttle
+        std::vector<std::string> f;
+        std::istringstream fields(line);
+        std::string x;
+        while (std::getline(fields, x, ',')) f.push_back(x);
+        f[11] = "1";
+        line.clear();
+        for (size_t i = 0; i < f.size(); ++i) line += (i ? "," : "") + f[i];
+      }
+      out += line + "\n";
+    }
+    ASSERT_NE(rows[50][11], 1.0);
+    std::ofstream(csv, std::ios::binary) << out;
+  }
+  Outcome o = run();
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find(json.string()), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("re-simulation differs from the recording"), std::string::npos)
+      << o.output;
+  EXPECT_NE(o.output.find("_traj.csv line "), std::string::npos) << o.output;
+  std::ofstream(csv, std::ios::binary) << text;   // restored
+
+  // A field that is not a number: the CSV file, its line and the column.
+  {
+    std::string bad = text;
+    const size_t line3 = bad.find('\n', bad.find('\n') + 1) + 1;
+    bad.replace(line3, bad.find(',', line3) - line3, "zero");
+    std::ofstream(csv, std::ios::binary) << bad;
+  }
+  o = run();
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find(csv.string() + ":3: key 't_s'"), std::string::npos) << o.output;
+  std::ofstream(csv, std::ios::binary) << text;
+
+  // A trajectory cut short: fewer rows than the record's trajectory_samples.
+  std::ofstream(csv, std::ios::binary) << text.substr(0, text.size() / 2);
+  o = run();
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("trajectory_samples"), std::string::npos) << o.output;
+  std::ofstream(csv, std::ios::binary) << text;
+
+  // A record without its seed; a record of another system.
+  const std::string record = Bytes(json);
+  Edit(json, "\"seed\": 0,", "");
+  o = run();
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find(json.string() + ": key 'seed'"), std::string::npos) << o.output;
+  std::ofstream(json, std::ios::binary) << record;
+  Edit(json, "\"system\": \"teleop\"", "\"system\": \"pid\"");
+  o = run();
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("not a teleoperated drive"), std::string::npos) << o.output;
+  std::ofstream(json, std::ios::binary) << record;
+
+  // An edited world: the task's FNV-1a is not the recording's.
+  Edit(src / "teleop_demo.yaml", "scale: 0.8", "scale: 0.9");
+  o = run();
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("provenance.task_file"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("does not match the drive"), std::string::npos) << o.output;
+
+  // No recordings at all; a missing one.
+  o = Sh(kCollect + " teleop --out " + (root_ / "teleop_bad" / "none").string());
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("RECORDING"), std::string::npos) << o.output;
+  o = Sh(kCollect + " teleop /nonexistent/drive.json --out " +
+         (root_ / "teleop_bad" / "none").string());
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("/nonexistent/drive.json"), std::string::npos) << o.output;
 }
 
 }  // namespace

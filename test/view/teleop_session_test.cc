@@ -45,6 +45,10 @@ TEST(TeleopSessionTest, SimulatedTimeFollowsTheWallClockAndCommandsAreRecorded) 
   EXPECT_FALSE(s.has_finished_drive());
   EXPECT_EQ(r.spec.system, "teleop");
   EXPECT_EQ(r.spec.vehicle, "hmmwv");
+  // Stopped, not decided by the rules: the status as it stood, and a message that says so.
+  EXPECT_EQ(r.status, runner::TrialStatus::kTimeout);
+  EXPECT_EQ(r.message, "stopped by the operator at t = 3.000 s (outcome as it stood: timeout, "
+                       "still driving)");
   // 3.0 s at 5 ms: the start sample and one per physics step.
   ASSERT_EQ(r.trajectory.size(), 601u);
   EXPECT_NEAR(r.sim_time_s, 3.0, 1e-9);

@@ -233,6 +233,7 @@ void WriteTrialJson(const runner::TrialResult& r, const std::string& path,
   }
   prov.UInt("seed", provenance.seed);
   prov.Str("host", provenance.host);
+  if (!provenance.operator_name.empty()) prov.Str("operator", provenance.operator_name);
 
   JsonObject o(0);
   o.Str("task", r.task_name);

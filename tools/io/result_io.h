@@ -34,6 +34,8 @@ struct Provenance {
   std::string perception_fnv1a64;
   uint64_t seed = 0;
   std::string host;
+  // Who drove a teleoperated trial (vb_view teleop --operator; written only when not empty).
+  std::string operator_name;
 };
 
 // Fills a Provenance for a trial of `task` (reads the task file and its height image to hash

@@ -31,12 +31,7 @@ class DemosMode : public Mode {
         soil_file_(DataDir() + "/soils/" + o.soil + ".yaml"),
         vehicle_(vb::io::LoadVehicle(vehicle_file_)) {
     vb::runner::ValidateSystemName(o.system, "--system");
-    const long k = o.episodes_per_world;
-    for (long first = 0; first < o.episodes; first += k) {
-      WorkItem item;
-      for (long e = first; e < std::min(o.episodes, first + k); ++e) item.episodes.push_back(e);
-      items_.push_back(item);
-    }
+    items_ = WorldWorkItems(o);
   }
 
   const std::vector<WorkItem>& items() const override { return items_; }
@@ -58,23 +53,13 @@ class DemosMode : public Mode {
   size_t wheels() const override { return vehicle_.axles.size() * 2; }
 
   void Run(const WorkItem& item, const std::vector<long>& todo, const EpisodeSink& sink) override {
-    const long w = item.episodes.front() / o_.episodes_per_world;
-    const GeneratedWorld world = WriteWorld(o_, w);
-    const vb::terrain::GeneratorOptions& gen = world.options;
-    const vb::terrain::TaskSpec& task = world.task;
-    const std::optional<vb::soil::SoilConfig> soil = vb::io::LoadSoilIfNeeded(task, soil_file_);
-
     vb::runner::EpisodeRules rules;
     rules.time_limit_s = o_.time_limit_s;
     rules.trajectory_every_n_steps = 0;
-    vb::runner::Episode episode(task, vehicle_, rules, soil ? &*soil : nullptr);
+    WorldEpisodes world(o_, item, vehicle_, rules);
+    vb::runner::Episode& episode = world.episode();
     for (long e : todo) {
-      const int j = static_cast<int>(e - item.episodes.front());
-      vb::runner::TrialSpec spec;
-      spec.pair_index = j % static_cast<int>(task.pairs.size());
-      spec.seed = gen.seed * 100 + static_cast<uint64_t>(j);
-      spec.system = o_.system;
-      spec.vehicle = o_.vehicle;
+      const vb::runner::TrialSpec spec = world.Spec(e, o_.system);
       vb::dataset::ControllerPolicy policy(vb::runner::MakeSystem(o_.system, episode, &models_));
       episode.Reset(spec);
       policy.Start(episode);
@@ -89,21 +74,7 @@ class DemosMode : public Mode {
         r.SetText("message", "filtered out (not a success): " + message);
         r.SetReal("sim_time_s", episode.time_s());
       }
-      AddCommonAttributes(o_, e, spec.seed, &r);
-      const vb::io::Provenance prov = vb::io::MakeProvenance(task, spec);
-      r.SetText("mode", "demos");
-      r.SetText("task", task.name);
-      r.SetText("task_file", "worlds/" + gen.name + ".yaml");
-      r.SetText("task_fnv1a64", prov.task_fnv1a64);
-      r.SetInt("pair", spec.pair_index);
-      r.SetText("vehicle", o_.vehicle);
-      r.SetText("vehicle_fnv1a64", vb::io::FileFnv1a64Hex(vehicle_file_));
-      r.SetText("soil", soil ? o_.soil : "");
-      r.SetText("system", o_.system);
-      r.SetInt("world_seed", static_cast<int64_t>(gen.seed));
-      r.SetText("elevation", std::string(vb::terrain::ElevationLevelName(gen.elevation)));
-      r.SetText("terrain", std::string(vb::terrain::TerrainTypeName(gen.terrain)));
-      r.SetText("density", std::string(vb::terrain::ObstacleDensityName(gen.density)));
+      world.Describe(e, spec, "demos", &r);
       r.SetReal("time_limit_s", o_.time_limit_s);
       sink(e, r);
     }

@@ -1,6 +1,7 @@
 // vb_collect: datasets for learning (docs/datasets.md). This file: the output directory (lock,
 // settings), resume, shards, worker processes, and the assembly into Minari's layout; the modes
-// (explore.cc, failures.cc) record episodes with the dataset library (vb/dataset).
+// (explore.cc, failures.cc, demos.cc, teleop.cc) record episodes with the dataset library
+// (vb/dataset).
 #include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -126,6 +127,7 @@ int Run(const Options& o) {
   const Clock::time_point t0 = Clock::now();
   std::unique_ptr<Mode> mode = o.mode == "explore"    ? MakeExploreMode(o)
                               : o.mode == "failures" ? MakeFailuresMode(o)
+                              : o.mode == "teleop"   ? MakeTeleopMode(o)
                                                      : MakeDemosMode(o);
   const vb::batch::Shard shard = vb::batch::ParseShard(o.shard);
   const int lock_fd = vb::io::PrepareOutputDir(o.out_dir, "episodes", mode->Settings(),

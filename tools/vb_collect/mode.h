@@ -40,6 +40,7 @@ class Mode {
 std::unique_ptr<Mode> MakeExploreMode(const Options& o);
 std::unique_ptr<Mode> MakeFailuresMode(const Options& o);
 std::unique_ptr<Mode> MakeDemosMode(const Options& o);
+std::unique_ptr<Mode> MakeTeleopMode(const Options& o);
 
 // $VB_DATA_DIR, or the source tree's data/.
 std::string DataDir();

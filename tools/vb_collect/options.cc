@@ -18,6 +18,7 @@ const char* const kUsage = R"(usage:
   vb_collect failures --from BATCH_DIR --out DIR [--window-s W] [options]
   vb_collect demos    --out DIR [--episodes N] [--world-seed S] [--episodes-per-world K]
                       [--system NAME] [--time-limit T] [options]
+  vb_collect teleop   RECORDING... --out DIR [--keep-failures] [--tasks DIR] [options]
 
 Collects a dataset for learning (docs/datasets.md) in Minari's HDF5 layout: DIR/episodes/ holds
 one file per episode (written atomically; a killed run resumes where it stopped), and when every
@@ -36,6 +37,11 @@ Modes:
              with vb's own physics) drives from every start of the explore mode's generated
              worlds to the pair's goal under the benchmark's rules; only successes are kept
              (failed episodes leave an empty episode file, left out of the dataset).
+  teleop     teleoperated demonstrations: drives recorded by vb_view teleop (RECORDING: a
+             drive's <stem>.json beside its <stem>_traj.csv, or a directory searched for them),
+             re-simulated from their recorded commands, which must reproduce each drive bit
+             for bit (else exit 2 naming the recording); the same schema as demos, and only
+             successes are kept unless --keep-failures (kept failures carry failure_type).
 
 Options:
   --out DIR               output directory (required)
@@ -48,10 +54,12 @@ Options:
   --window-s W            failures: seconds before the trial's end to keep (default 10)
   --time-limit T          failures: the trials' time limit when BATCH_DIR has no settings.txt
                           (a committed report keeps only index.csv; default 60); demos: the
-                          trials' time limit (default 60, the benchmark's)
+                          trials' time limit (default 60, the benchmark's); teleop: the
+                          drives' (default 60, vb_view's)
   --system NAME           demos: the expert (default oracle; any vb_run --system name)
-  --tasks DIR             failures: where task files are found by name when a recorded path
-                          does not exist (default: vb's tasks/, as vb_batch finds it)
+  --keep-failures         teleop: keep drives that did not reach the goal (labelled)
+  --tasks DIR             failures, teleop: where task files are found by name when a recorded
+                          path does not exist (default: vb's tasks/, as vb_batch finds it)
   --vehicle NAME          data/vehicles/NAME.yaml (explore, demos; default hmmwv)
   --soil NAME             data/soils/NAME.yaml for deformable patches (default verti_bench)
   --sample-period S       seconds between samples, a whole number of 5 ms steps (default 0.1)
@@ -99,28 +107,35 @@ Options ParseArgs(int argc, char** argv) {
     else if (a == "--jobs") o.jobs = static_cast<int>(args.U64Value(1, 1024));
     else if (a == "--shard") o.shard = args.Value();
     else if (a == "--rerun-stale") o.rerun_stale = true;
+    else if (a == "--keep-failures") o.keep_failures = true;
     else if (a == "--quiet") o.quiet = true;
     else if (args.IsFlag()) args.Unknown();
     else if (!have_mode) {
       o.mode = a;
       have_mode = true;
+    } else if (o.mode == "teleop") {
+      o.recordings.push_back(a);
     } else {
       throw vb::InputError("", 0, a,
-                           "unexpected argument (one mode: explore | failures | demos)");
+                           "unexpected argument (one mode: explore | failures | demos | teleop)");
     }
   }
   if (o.help) return o;
-  if (o.mode != "explore" && o.mode != "failures" && o.mode != "demos") {
+  if (o.mode != "explore" && o.mode != "failures" && o.mode != "demos" && o.mode != "teleop") {
     const std::string what =
         o.mode.empty() ? std::string("missing") : "'" + o.mode + "' is not valid";
     throw vb::InputError("", 0, "mode",
-                         what + "; one of explore | failures | demos (see --help)");
+                         what + "; one of explore | failures | demos | teleop (see --help)");
   }
   if (o.out_dir.empty()) throw vb::InputError("", 0, "--out", "required (see --help)");
   if (o.mode == "failures" && o.from_dir.empty()) {
     throw vb::InputError("", 0, "--from", "required in failures mode (see --help)");
   }
   if (o.mode == "demos") vb::runner::ValidateSystemName(o.system, "--system");
+  if (o.mode == "teleop" && o.recordings.empty()) {
+    throw vb::InputError("", 0, "RECORDING",
+                         "teleop needs recordings of vb_view teleop (files or directories)");
+  }
   if (o.tasks_dir.empty()) o.tasks_dir = vb::io::TasksDir();
   if (o.dataset_id.empty()) o.dataset_id = "vb/" + o.mode + "-v0";
   vb::batch::ParseShard(o.shard);   // validates

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "vb/dataset/recorder.h"
 
@@ -12,7 +13,7 @@ namespace vb_collect {
 extern const char* const kUsage;
 
 struct Options {
-  std::string mode;                 // explore | failures | demos
+  std::string mode;                 // explore | failures | demos | teleop
   std::string out_dir;
   std::string dataset_id;           // default vb/<mode>-v0
   // explore, demos
@@ -28,6 +29,9 @@ struct Options {
   std::string tasks_dir;            // task files by name when a recorded path does not exist
   // demos
   std::string system = "oracle";
+  // teleop
+  std::vector<std::string> recordings;   // vb_view teleop records, or directories of them
+  bool keep_failures = false;
   // common
   std::string vehicle = "hmmwv";
   std::string soil = "verti_bench";

@@ -1,8 +1,11 @@
 #include "worlds.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <string>
 
+#include "io/result_io.h"
+#include "io/soil_io.h"
 #include "io/task_io.h"
 
 namespace vb_collect {
@@ -49,6 +52,57 @@ GeneratedWorld WriteWorld(const Options& o, long w) {
   vb::io::SaveTask(generated, task_path.string());
   world.task = vb::io::LoadTask(task_path.string());
   return world;
+}
+
+std::vector<WorkItem> WorldWorkItems(const Options& o) {
+  std::vector<WorkItem> items;
+  const long k = o.episodes_per_world;
+  for (long first = 0; first < o.episodes; first += k) {
+    WorkItem item;
+    for (long e = first; e < std::min(o.episodes, first + k); ++e) item.episodes.push_back(e);
+    items.push_back(item);
+  }
+  return items;
+}
+
+WorldEpisodes::WorldEpisodes(const Options& o, const WorkItem& item,
+                             const vb::vehicles::VehicleParams& vehicle,
+                             const vb::runner::EpisodeRules& rules)
+    : o_(o),
+      first_episode_(item.episodes.front()),
+      world_(WriteWorld(o, item.episodes.front() / o.episodes_per_world)),
+      soil_(vb::io::LoadSoilIfNeeded(world_.task, DataDir() + "/soils/" + o.soil + ".yaml")),
+      episode_(std::make_unique<vb::runner::Episode>(world_.task, vehicle, rules,
+                                                     soil_ ? &*soil_ : nullptr)) {}
+
+vb::runner::TrialSpec WorldEpisodes::Spec(long e, const std::string& system) const {
+  const int j = static_cast<int>(e - first_episode_);
+  vb::runner::TrialSpec spec;
+  spec.pair_index = j % static_cast<int>(world_.task.pairs.size());
+  spec.seed = world_.options.seed * 100 + static_cast<uint64_t>(j);
+  spec.system = system;
+  spec.vehicle = o_.vehicle;
+  return spec;
+}
+
+void WorldEpisodes::Describe(long e, const vb::runner::TrialSpec& spec, const std::string& mode,
+                             vb::dataset::EpisodeRecord* r) const {
+  const vb::terrain::GeneratorOptions& gen = world_.options;
+  AddCommonAttributes(o_, e, spec.seed, r);
+  r->SetText("mode", mode);
+  r->SetText("task", world_.task.name);
+  r->SetText("task_file", "worlds/" + gen.name + ".yaml");
+  r->SetText("task_fnv1a64", vb::io::MakeProvenance(world_.task, spec).task_fnv1a64);
+  r->SetInt("pair", spec.pair_index);
+  r->SetText("vehicle", o_.vehicle);
+  r->SetText("vehicle_fnv1a64",
+             vb::io::FileFnv1a64Hex(DataDir() + "/vehicles/" + o_.vehicle + ".yaml"));
+  r->SetText("soil", soil_ ? o_.soil : "");
+  r->SetText("system", spec.system);
+  r->SetInt("world_seed", static_cast<int64_t>(gen.seed));
+  r->SetText("elevation", std::string(vb::terrain::ElevationLevelName(gen.elevation)));
+  r->SetText("terrain", std::string(vb::terrain::TerrainTypeName(gen.terrain)));
+  r->SetText("density", std::string(vb::terrain::ObstacleDensityName(gen.density)));
 }
 
 }  // namespace vb_collect

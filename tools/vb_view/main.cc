@@ -50,6 +50,7 @@ options:
   --seed S           (teleop) trial seed (default 0)
   --soil NAME        (teleop) soil parameters for mud, sand, snow (default verti_bench)
   --out DIR          (teleop) where drives are recorded (default results/teleop)
+  --operator NAME    (teleop) who drives, recorded in each drive's provenance ("operator")
   --exit-after N     (teleop) exit after N recorded drives (default: run until interrupted)
   --help             this text
   --version          the version and git commit of this build
@@ -70,6 +71,7 @@ struct Options {
   uint64_t seed = 0;
   std::string soil = "verti_bench";
   std::string out_dir = "results/teleop";
+  std::string operator_name;
   int exit_after = 0;
   bool help = false;
   bool version = false;
@@ -102,6 +104,8 @@ Options ParseArgs(int argc, char** argv) {
       o.soil = args.Value();
     } else if (a == "--out") {
       o.out_dir = args.Value();
+    } else if (a == "--operator") {
+      o.operator_name = args.Value();
     } else if (a == "--exit-after") {
       o.exit_after = static_cast<int>(args.U64Value(1, 1000000));
     } else if (args.IsFlag()) {
@@ -236,6 +240,7 @@ int Run(const Options& o) {
     }
     vb::io::Provenance provenance = vb::io::MakeProvenance(task, result.spec);
     vb::io::RecordParameterFiles(vehicle_file, o.soil, soil ? soil_file : "", &provenance);
+    provenance.operator_name = o.operator_name;
     const std::string stem = vb::io::TrialFileStem(result);
     vb::io::WriteTrajectoryCsv(result, (dir / (stem + "_traj.csv")).string());
     vb::io::WriteTrialJson(result, (dir / (stem + ".json")).string(), provenance);

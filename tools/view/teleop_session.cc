@@ -1,6 +1,7 @@
 #include "view/teleop_session.h"
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <sstream>
 #include <vector>
@@ -75,6 +76,7 @@ std::string TeleopSession::HandleMessage(const std::string& text, double wall_s)
     command_ = controllers::Command();
     driving_ = true;
     finished_ = false;
+    stopped_ = false;
     ++drives_;
     start_wall_s_ = wall_s;
     slipped_s_ = 0.0;
@@ -96,7 +98,10 @@ std::string TeleopSession::HandleMessage(const std::string& text, double wall_s)
     if (w.size() != 1) return "stop takes no arguments";
     if (!driving_) return "no drive to stop (send start first)";
     AdvanceTo(wall_s);
-    if (driving_) EndDrive();
+    if (driving_) {
+      stopped_ = true;
+      EndDrive();
+    }
     return "";
   }
   return "unknown message '" + w[0] + "' (expected start, command or stop)";
@@ -126,7 +131,21 @@ void TeleopSession::EndDrive() {
 runner::TrialResult TeleopSession::TakeFinishedDrive() {
   VB_DEMAND(finished_);
   finished_ = false;
-  return episode_->TakeResult();
+  runner::TrialResult r = episode_->TakeResult();
+  // A drive the operator stopped is not decided by the episode's rules: its status is the
+  // outcome as it stood (usually timeout); the message says what happened.
+  if (stopped_) {
+    char t[32];
+    std::snprintf(t, sizeof(t), "%.3f", r.sim_time_s);
+    // Not "time limit reached": the time limit was not reached. Other outcomes say why.
+    const std::string outcome = r.status == runner::TrialStatus::kTimeout
+                                    ? "timeout, still driving"
+                                    : std::string(runner::TrialStatusName(r.status)) + ": " +
+                                          r.message;
+    r.message = std::string("stopped by the operator at t = ") + t +
+                " s (outcome as it stood: " + outcome + ")";
+  }
+  return r;
 }
 
 std::string TeleopSession::StateJson() {

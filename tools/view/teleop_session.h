@@ -54,7 +54,8 @@ class TeleopSession {
   bool driving() const { return driving_; }
   // True once per ended drive, until TakeFinishedDrive.
   bool has_finished_drive() const { return finished_; }
-  // The ended drive's result (trajectory included); clears has_finished_drive.
+  // The ended drive's result (trajectory included); clears has_finished_drive. A drive ended by
+  // "stop" has the message "stopped by the operator at t = T s (outcome as it stood: ...)".
   runner::TrialResult TakeFinishedDrive();
   int drives_started() const { return drives_; }
 
@@ -73,6 +74,7 @@ class TeleopSession {
   controllers::Command command_;
   bool driving_ = false;
   bool finished_ = false;
+  bool stopped_ = false;     // the running or last drive was ended by "stop"
   int drives_ = 0;
   double start_wall_s_ = 0.0;
   double slipped_s_ = 0.0;

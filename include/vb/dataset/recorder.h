@@ -67,9 +67,12 @@ class ControllerPolicy : public SamplePolicy {
 
 // Which physics steps are sampled: step `first_step` and every `sample_every_steps` after it,
 // and always the episode's last step (the last interval may be shorter). Steps before
-// first_step are driven but not recorded (a failure window).
+// first_step are driven but not recorded (a failure window). end_step >= 0 stops driving after
+// that many physics steps even though the episode is not done (a teleoperated drive that its
+// operator stopped): the record ends there with the outcome as it stands (Episode::Result).
 struct RecordWindow {
   long first_step = 0;
+  long end_step = -1;
 };
 
 // Drives `episode` (after Reset, and policy started) to its end and returns the record: columns
