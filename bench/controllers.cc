@@ -6,8 +6,6 @@
 //  3. Whole trials of EH and MPPI (pairs 0-2) on each TASK: real-time factor (median) and the
 //     controller's share of the wall time.
 //   usage: vb_bench_controllers [TASK...]   (default: tasks/env008, env017, env026)
-#include <time.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -22,22 +20,13 @@
 #include "vb/controllers/mppi_controller.h"
 #include "vb/engine/runner/episode.h"
 
+#include "pid_observations.h"
+
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-// CPU time of this thread (s): on a shared, oversubscribed machine the wall clock also counts the
-// time the thread waited for a core; the CPU time does not.
-double ThreadCpuSeconds() {
-  timespec ts;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
-
-double Quantile(std::vector<double> v, double q) {
-  std::sort(v.begin(), v.end());
-  return v[static_cast<size_t>(q * (v.size() - 1))];
-}
+using vb::bench::Quantile;
+using vb::bench::ThreadCpuSeconds;
 
 }  // namespace
 
@@ -61,19 +50,10 @@ int main(int argc, char** argv) {
     const terrain::TaskSpec task = io::LoadTask(tasks[0]);
     const std::optional<soil::SoilConfig> soil =
         io::LoadSoilIfNeeded(task, VB_SOURCE_DIR "/data/soils/verti_bench.yaml");
-    runner::Episode episode(task, hmmwv, runner::EpisodeRules(), soil ? &*soil : nullptr);
-    std::unique_ptr<controllers::Controller> pid = controllers::MakeController("pid");
-    episode.SetObservationConfig(pid->observation_config());
-    episode.Reset(runner::TrialSpec());
-    pid->Reset(episode.context());
-    std::vector<controllers::Observation> obs;
-    while (!episode.Done()) {
-      const controllers::Observation& o = episode.Observe();
-      obs.push_back(o);
-      obs.back().global_path_m = nullptr;
-      episode.Step(pid->Update(o));
-    }
-    const controllers::EpisodeContext& context = episode.context();
+    const bench::PidObservations pid_run =
+        bench::RecordPidTrial(task, hmmwv, soil ? &*soil : nullptr, nullptr);
+    const std::vector<controllers::Observation>& obs = pid_run.observations;
+    const controllers::EpisodeContext& context = pid_run.context();
 
     for (const char* variant : {"mppi", "mppi_original"}) {
       controllers::MppiController mppi(std::string(variant) == "mppi"

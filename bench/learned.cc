@@ -6,8 +6,6 @@
 //     vb_bench_observation; whole trials (pairs 0-2 of each TASK) of PID, RL, MCL and ACL:
 //     median real-time factor and the controller's share of the wall time.
 //   usage: vb_bench_learned [TASK...]   (default: tasks/env042)
-#include <time.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -22,18 +20,13 @@
 #include "vb/controllers/learned_controller.h"
 #include "vb/engine/runner/episode.h"
 
+#include "pid_observations.h"
+
 namespace {
 
-double ThreadCpuSeconds() {
-  timespec ts;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
-
-double Quantile(std::vector<double> v, double q) {
-  std::sort(v.begin(), v.end());
-  return v[static_cast<size_t>(q * (v.size() - 1))];
-}
+using Clock = std::chrono::steady_clock;
+using vb::bench::Quantile;
+using vb::bench::ThreadCpuSeconds;
 
 }  // namespace
 
@@ -50,18 +43,10 @@ int main(int argc, char** argv) {
 
   {
     const terrain::TaskSpec task = io::LoadTask(tasks[0]);
-    runner::Episode episode(task, hmmwv, runner::EpisodeRules());
-    std::unique_ptr<controllers::Controller> pid = controllers::MakeController("pid");
-    episode.SetObservationConfig(controllers::LearnedObservationConfig());
-    episode.Reset(runner::TrialSpec());
-    pid->Reset(episode.context());
-    std::vector<controllers::Observation> obs;
-    while (!episode.Done()) {
-      const controllers::Observation& o = episode.Observe();
-      obs.push_back(o);
-      obs.back().global_path_m = nullptr;
-      episode.Step(pid->Update(o));
-    }
+    const controllers::ObservationConfig learned_config = controllers::LearnedObservationConfig();
+    const bench::PidObservations pid_run =
+        bench::RecordPidTrial(task, hmmwv, nullptr, &learned_config);
+    const std::vector<controllers::Observation>& obs = pid_run.observations;
     std::printf("per decision (features + forward), %zu observations of a PID trial:\n",
                 obs.size());
     for (const char* system : {"rl", "mcl", "acl"}) {

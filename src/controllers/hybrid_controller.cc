@@ -9,10 +9,6 @@
 
 namespace vb::controllers {
 
-namespace {
-constexpr double kRateTolerance_s = 1e-9;
-}  // namespace
-
 const char* HybridSystemName(HybridSystem system) {
   switch (system) {
     case HybridSystem::kWmvct: return "wmvct";
@@ -48,7 +44,7 @@ HybridControllerParams HybridDefaultParams(HybridSystem system) {
       break;
     case HybridSystem::kMppi6:
       p.core.samples = 600;
-      p.widen_near_goal = false;
+      p.front.widen_near_goal = false;
       p.steering_rate_per_s = 10.0;
       // ackermann_bench: step = speed command in metres (0.45-0.6 m), wheelbase 3.4 m; the wheel
       // angle of MPPI's bicycle (0.6 rad at full steering; the original turned its wheels 1 rad)
@@ -71,6 +67,7 @@ HybridController::HybridController(HybridSystem system, const HybridControllerPa
     : system_(system),
       params_(params),
       name_(std::move(name)),
+      front_(params.front),
       core_(params.core),
       model_(std::move(model)),
       trav_(std::move(trav)) {}
@@ -80,22 +77,18 @@ HybridController::HybridController(const HybridController& other)
       params_(other.params_),
       name_(other.name_),
       context_(other.context_),
+      front_(other.front_),
       core_(other.core_),
       model_(other.model_),
       trav_(other.trav_),
       cost_(other.cost_),
-      last_update_s_(other.last_update_s_),
       planned_steering_(other.planned_steering_),
-      steering_(other.steering_),
-      updates_(other.updates_) {
+      steering_(other.steering_) {
   if (cost_) cost_->set_traversability(trav_ ? &*trav_ : nullptr);   // point at our own map
 }
 
 ObservationConfig HybridController::observation_config() const {
-  ObservationConfig c;
-  c.lookahead_m = params_.lookahead_m;
-  c.replan_period_s = params_.replan_period_s;
-  return c;
+  return front_.observation_config();
 }
 
 void HybridController::Reset(const EpisodeContext& context) {
@@ -112,33 +105,17 @@ void HybridController::Reset(const EpisodeContext& context) {
   const double size_y = context.task != nullptr ? context.task->size_y_m : 0.0;
   cost_.emplace(params_.cost, obstacles, size_x, size_y, trav_ ? &*trav_ : nullptr);
   core_.Reset(context.seed ^ params_.seed_salt);
-  last_update_s_ = -1e9;
+  front_.Reset();
   planned_steering_ = 0.0;
   steering_ = 0.0;
-  updates_ = 0;
 }
 
 Command HybridController::Update(const Observation& obs) {
-  if (obs.time_s - last_update_s_ >= params_.update_period_s - kRateTolerance_s) {
-    last_update_s_ = obs.time_s;
-    PlannerState start;
-    start.x_m = obs.position_W.x();
-    start.y_m = obs.position_W.y();
-    start.z_m = obs.position_W.z();
-    start.yaw_rad = obs.rpy.yaw_rad;
-    start.roll_rad = obs.rpy.roll_rad;
-    start.pitch_rad = obs.rpy.pitch_rad;
+  if (front_.Due(obs)) {
     // the traversability map once per update, at the vehicle's heading
     if (trav_) trav_->Update(*context_.maps, obs.position_W.head<2>(), obs.rpy.yaw_rad);
     cost_->set_goal(obs.local_goal_m, obs.position_W.head<2>());
-    const Vec2 to_local_goal = obs.local_goal_m - obs.position_W.head<2>();
-    const bool near = params_.widen_near_goal &&
-                      to_local_goal.norm() < params_.near_goal_m * context_.scale;
-    const MppiControl& lo = near ? params_.near_goal_u_min : params_.core.u_min;
-    const MppiControl& hi = near ? params_.near_goal_u_max : params_.core.u_max;
-    const MppiControl u = core_.Update(start, model_, *cost_, lo, hi);
-    planned_steering_ = std::clamp(u[kMppiSteer], -1.0, 1.0);
-    ++updates_;
+    planned_steering_ = front_.Plan(obs, context_.scale, core_, model_, *cost_);
   }
   if (params_.steering_rate_per_s > 0.0) {
     steering_ = RateLimitedSteering(planned_steering_, steering_,
@@ -146,10 +123,7 @@ Command HybridController::Update(const Observation& obs) {
   } else {
     steering_ = planned_steering_;
   }
-  Command command;
-  command.steering = steering_;
-  SpeedControl(params_.target_speed_mps, obs.forward_speed_mps, params_.speed_kp, &command);
-  return command;
+  return front_.Drive(obs, steering_);
 }
 
 std::unique_ptr<Controller> HybridController::Clone() const {

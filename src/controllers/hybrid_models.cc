@@ -6,6 +6,7 @@
 #include <string>
 
 #include "vb/engine/error.h"
+#include "vb/terrain/terrain_heights.h"
 
 namespace vb::controllers {
 
@@ -35,17 +36,20 @@ void Expect(const nn::TensorSet& t, const nn::Mlp& net, const std::string& prefi
 }  // namespace
 
 double TerrainShape(const terrain::Terrain& terrain, double x_m, double y_m, double yaw_rad,
-                    float* out) {
+                    float* out, int stride) {
   const double c = std::cos(yaw_rad), s = std::sin(yaw_rad);
-  double h[kTerrainGridPoints];
+  double px[kTerrainGridPoints], py[kTerrainGridPoints], h[kTerrainGridPoints];
   int i = 0;
   for (double f : kTerrainGridForward_m) {
     for (double l : kTerrainGridLeft_m) {
-      h[i++] = terrain.Height(x_m + c * f - s * l, y_m + s * f + c * l);
+      px[i] = x_m + c * f - s * l;
+      py[i] = y_m + s * f + c * l;
+      ++i;
     }
   }
+  terrain::Heights(terrain, px, py, kTerrainGridPoints, h);
   const double centre = h[kTerrainGridCentre];
-  for (int j = 0; j < kTerrainGridPoints; ++j) out[j] = static_cast<float>(h[j] - centre);
+  for (int j = 0; j < kTerrainGridPoints; ++j) out[j * stride] = static_cast<float>(h[j] - centre);
   return centre;
 }
 
@@ -67,25 +71,40 @@ TalNetworks::TalNetworks(const nn::TensorSet& t)
   Expect(t, head, "tal.head", kTalContext + kTerrainGridPoints, kTalOutputs);
 }
 
-void TalNetworks::Forward(Eigen::MatrixXf& in, Eigen::MatrixXf& query_in,
-                          Eigen::MatrixXf& query_out, Eigen::MatrixXf& out) const {
+void TalNetworks::Forward(nn::BatchMatrix& in, nn::BatchMatrix& out) const {
   const int n = static_cast<int>(in.cols());
-  if (query_in.rows() != kTalContext || query_in.cols() != n) query_in.resize(kTalContext, n);
-  query_in = in.topRows(kTalContext);
-  query.ForwardBatch(query_in, query_out);
-  // attention: softmax over the 15 terrain points, times 15, times the heights
-  for (int k = 0; k < n; ++k) {
-    float* logits = query_out.col(k).data();
-    float mx = logits[0];
-    for (int i = 1; i < kTerrainGridPoints; ++i) mx = std::max(mx, logits[i]);
-    float total = 0.f;
-    for (int i = 0; i < kTerrainGridPoints; ++i) {
-      logits[i] = std::exp(logits[i] - mx);
-      total += logits[i];
-    }
-    const float scale = static_cast<float>(kTerrainGridPoints) / total;
-    float* col = in.col(k).data() + kTalContext;
-    for (int i = 0; i < kTerrainGridPoints; ++i) col[i] *= scale * logits[i];
+  if (logits_.rows() != kTerrainGridPoints || logits_.cols() != n) {
+    logits_.resize(kTerrainGridPoints, n);
+    max_.assign(static_cast<size_t>(n), 0.f);
+    total_.assign(static_cast<size_t>(n), 0.f);
+  }
+  // the query reads the context rows 0-3 in place (feature-major: they are the first 4n floats)
+  query.ForwardBatch(in.data(), n, n, logits_.data(), n);
+  // attention: softmax over the 15 terrain points, times 15, times the heights; every loop runs
+  // over the samples (k inner), each sample's operations in the order of a scalar softmax
+  float* q = logits_.data();
+  float* mx = max_.data();
+  float* total = total_.data();
+  for (int k = 0; k < n; ++k) mx[k] = q[k];
+  for (int i = 1; i < kTerrainGridPoints; ++i) {
+    const float* qi = q + static_cast<long>(i) * n;
+    for (int k = 0; k < n; ++k) mx[k] = qi[k] > mx[k] ? qi[k] : mx[k];
+  }
+  for (int i = 0; i < kTerrainGridPoints; ++i) {
+    float* qi = q + static_cast<long>(i) * n;
+    for (int k = 0; k < n; ++k) qi[k] = qi[k] - mx[k];
+  }
+  nn::ExpBatch(head.kernel_isa(), q, q, kTerrainGridPoints * n);
+  for (int k = 0; k < n; ++k) total[k] = q[k];
+  for (int i = 1; i < kTerrainGridPoints; ++i) {
+    const float* qi = q + static_cast<long>(i) * n;
+    for (int k = 0; k < n; ++k) total[k] = total[k] + qi[k];
+  }
+  for (int k = 0; k < n; ++k) total[k] = static_cast<float>(kTerrainGridPoints) / total[k];
+  for (int i = 0; i < kTerrainGridPoints; ++i) {
+    const float* qi = q + static_cast<long>(i) * n;
+    float* hi = in.data() + static_cast<long>(kTalContext + i) * n;
+    for (int k = 0; k < n; ++k) hi[k] = hi[k] * (total[k] * qi[k]);
   }
   head.ForwardBatch(in, out);
 }
@@ -122,12 +141,12 @@ void HybridRolloutModel::StepWmvct(const PlannerState* states, const MppiControl
                                    int count, PlannerState* next) const {
   const int n_in = kTerrainGridPoints + 2;
   if (in_.rows() != n_in || in_.cols() != count) in_.resize(n_in, count);
+  float* in = in_.data();
   for (int k = 0; k < count; ++k) {
-    float* col = in_.col(k).data();
     centre_[k] = static_cast<float>(
-        TerrainShape(*terrain_, next[k].x_m, next[k].y_m, next[k].yaw_rad, col));
-    col[kTerrainGridPoints] = static_cast<float>(states[k].roll_rad);
-    col[kTerrainGridPoints + 1] = static_cast<float>(states[k].pitch_rad);
+        TerrainShape(*terrain_, next[k].x_m, next[k].y_m, next[k].yaw_rad, in + k, count));
+    in[kTerrainGridPoints * count + k] = static_cast<float>(states[k].roll_rad);
+    in[(kTerrainGridPoints + 1) * count + k] = static_cast<float>(states[k].pitch_rad);
   }
   nets_[0].ForwardBatch(in_, out_);
   for (int k = 0; k < count; ++k) {
@@ -142,13 +161,14 @@ void HybridRolloutModel::StepMppi6(const PlannerState* states, const MppiControl
   const int n_in = kTerrainGridPoints + 4;
   if (in_.rows() != n_in || in_.cols() != count) in_.resize(n_in, count);
   const double step_per_speed = bicycle_.params().step_length_per_speed_m * bicycle_.params().scale;
+  float* in = in_.data();
   for (int k = 0; k < count; ++k) {
-    float* col = in_.col(k).data();
-    TerrainShape(*terrain_, next[k].x_m, next[k].y_m, next[k].yaw_rad, col);
-    col[kTerrainGridPoints] = static_cast<float>(states[k].roll_rad);
-    col[kTerrainGridPoints + 1] = static_cast<float>(states[k].pitch_rad);
-    col[kTerrainGridPoints + 2] = static_cast<float>(controls[k][kMppiSteer]);
-    col[kTerrainGridPoints + 3] = static_cast<float>(step_per_speed * controls[k][kMppiSpeed]);
+    TerrainShape(*terrain_, next[k].x_m, next[k].y_m, next[k].yaw_rad, in + k, count);
+    in[kTerrainGridPoints * count + k] = static_cast<float>(states[k].roll_rad);
+    in[(kTerrainGridPoints + 1) * count + k] = static_cast<float>(states[k].pitch_rad);
+    in[(kTerrainGridPoints + 2) * count + k] = static_cast<float>(controls[k][kMppiSteer]);
+    in[(kTerrainGridPoints + 3) * count + k] =
+        static_cast<float>(step_per_speed * controls[k][kMppiSpeed]);
   }
   if (sum_.rows() != 2 || sum_.cols() != count) sum_.resize(2, count);
   sum_.setZero();
@@ -171,14 +191,14 @@ void HybridRolloutModel::StepTal(const PlannerState* states, const MppiControl* 
   for (int k = 0; k < count; ++k) {
     const PlannerState& s = states[k];
     const double ds = std::clamp(step_per_speed * controls[k][kMppiSpeed], 0.0, kTalMaxStep_m);
-    float* col = in_.col(k).data();
-    col[0] = static_cast<float>(s.roll_rad);
-    col[1] = static_cast<float>(s.pitch_rad);
-    col[2] = static_cast<float>(ds);
-    col[3] = static_cast<float>(controls[k][kMppiSteer]);
-    TerrainShape(*terrain_, s.x_m, s.y_m, s.yaw_rad, col + kTalContext);
+    float* in = in_.data() + k;
+    in[0] = static_cast<float>(s.roll_rad);
+    in[count] = static_cast<float>(s.pitch_rad);
+    in[2 * count] = static_cast<float>(ds);
+    in[3 * count] = static_cast<float>(controls[k][kMppiSteer]);
+    TerrainShape(*terrain_, s.x_m, s.y_m, s.yaw_rad, in + kTalContext * count, count);
   }
-  tal_->Forward(in_, query_in_, query_out_, out_);
+  tal_->Forward(in_, out_);
   for (int k = 0; k < count; ++k) {
     const PlannerState& s = states[k];
     const float c = std::cos(static_cast<float>(s.yaw_rad));

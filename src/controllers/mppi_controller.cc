@@ -1,17 +1,7 @@
 // MPPI baseline controller (mppi_controller.h).
 #include "vb/controllers/mppi_controller.h"
 
-#include <algorithm>
-#include <cmath>
-
-#include "vb/controllers/pid_controller.h"
-
 namespace vb::controllers {
-
-namespace {
-// Observation times are k * step_s; the tolerance keeps "t - last >= period" exact in steps.
-constexpr double kRateTolerance_s = 1e-9;
-}  // namespace
 
 MppiControllerParams MppiIntentParams() { return MppiControllerParams(); }
 
@@ -27,14 +17,13 @@ MppiControllerParams MppiOriginalParams() {
 }
 
 MppiController::MppiController(const MppiControllerParams& params, std::string name)
-    : params_(params), name_(std::move(name)), core_(params.core), model_(params.model) {}
+    : params_(params),
+      name_(std::move(name)),
+      front_(params.front),
+      core_(params.core),
+      model_(params.model) {}
 
-ObservationConfig MppiController::observation_config() const {
-  ObservationConfig c;
-  c.lookahead_m = params_.lookahead_m;
-  c.replan_period_s = params_.replan_period_s;
-  return c;
-}
+ObservationConfig MppiController::observation_config() const { return front_.observation_config(); }
 
 void MppiController::Reset(const EpisodeContext& context) {
   context_ = context;
@@ -47,34 +36,16 @@ void MppiController::Reset(const EpisodeContext& context) {
   const double size_y = context.task != nullptr ? context.task->size_y_m : 0.0;
   cost_.emplace(params_.cost, obstacles, size_x, size_y);
   core_.Reset(context.seed ^ params_.seed_salt);
-  last_update_s_ = -1e9;
+  front_.Reset();
   steering_ = 0.0;
-  updates_ = 0;
 }
 
 Command MppiController::Update(const Observation& obs) {
-  if (obs.time_s - last_update_s_ >= params_.update_period_s - kRateTolerance_s) {
-    last_update_s_ = obs.time_s;
-    PlannerState start;
-    start.x_m = obs.position_W.x();
-    start.y_m = obs.position_W.y();
-    start.z_m = obs.position_W.z();
-    start.yaw_rad = obs.rpy.yaw_rad;
-    start.roll_rad = obs.rpy.roll_rad;
-    start.pitch_rad = obs.rpy.pitch_rad;
+  if (front_.Due(obs)) {
     cost_->set_goal(obs.local_goal_m);
-    const Vec2 to_local_goal = obs.local_goal_m - obs.position_W.head<2>();
-    const bool near = to_local_goal.norm() < params_.near_goal_m * context_.scale;
-    const MppiControl& lo = near ? params_.near_goal_u_min : params_.core.u_min;
-    const MppiControl& hi = near ? params_.near_goal_u_max : params_.core.u_max;
-    const MppiControl u = core_.Update(start, model_, *cost_, lo, hi);
-    steering_ = std::clamp(u[kMppiSteer], -1.0, 1.0);
-    ++updates_;
+    steering_ = front_.Plan(obs, context_.scale, core_, model_, *cost_);
   }
-  Command command;
-  command.steering = steering_;
-  SpeedControl(params_.target_speed_mps, obs.forward_speed_mps, params_.speed_kp, &command);
-  return command;
+  return front_.Drive(obs, steering_);
 }
 
 std::unique_ptr<Controller> MppiController::Clone() const {

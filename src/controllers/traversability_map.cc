@@ -28,11 +28,11 @@ TraversabilityMap::TraversabilityMap(const nn::TensorSet& tensors,
 }
 
 void TraversabilityMap::FillInput(const terrain::GroundTruthMaps& maps, const Vec2& p_m,
-                                  double yaw_rad, float* col) const {
-  TerrainShape(maps.terrain(), p_m.x(), p_m.y(), yaw_rad, col);
+                                  double yaw_rad, float* col, int stride) const {
+  TerrainShape(maps.terrain(), p_m.x(), p_m.y(), yaw_rad, col, stride);
   const int cls = std::clamp(static_cast<int>(std::lround(maps.Sample(terrain::MapLayer::kSemantics, p_m))),
                              0, kClasses - 1);
-  for (int c = 0; c < kClasses; ++c) col[kTerrainGridPoints + c] = c == cls ? 1.f : 0.f;
+  for (int c = 0; c < kClasses; ++c) col[(kTerrainGridPoints + c) * stride] = c == cls ? 1.f : 0.f;
 }
 
 void TraversabilityMap::Update(const terrain::GroundTruthMaps& maps, const Vec2& centre_m,
@@ -44,7 +44,7 @@ void TraversabilityMap::Update(const terrain::GroundTruthMaps& maps, const Vec2&
   for (int r = 0; r < n; ++r) {
     for (int c = 0; c < n; ++c) {
       const Vec2 p(origin_m_.x() + c * params_.cell_m, origin_m_.y() - r * params_.cell_m);
-      FillInput(maps, p, yaw_rad, in_.col(r * n + c).data());
+      FillInput(maps, p, yaw_rad, in_.data() + r * n + c, n * n);
     }
   }
   net_.ForwardBatch(in_, out_);
@@ -57,7 +57,7 @@ double TraversabilityMap::Predict(const terrain::GroundTruthMaps& maps, const Ve
                                   double yaw_rad) const {
   float in[kInputs];
   float out = 0.f;
-  FillInput(maps, p_m, yaw_rad, in);
+  FillInput(maps, p_m, yaw_rad, in, 1);
   net_.Forward(in, &out);
   return 1.0 / (1.0 + std::exp(-static_cast<double>(out)));
 }

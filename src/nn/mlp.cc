@@ -84,6 +84,7 @@ Mlp::Mlp(const TensorSet& tensors, const std::string& prefix,
     weights_.push_back(Eigen::Map<const Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic,
                                                       Eigen::RowMajor>>(w.data.data(), out, in));
     biases_.push_back(Eigen::Map<const Eigen::VectorXf>(b.data.data(), out));
+    dense_w_.emplace_back(w.data.begin(), w.data.begin() + static_cast<long>(out) * in);
     widest = std::max({widest, out, in});
   }
   activations_ = activations;
@@ -109,15 +110,45 @@ void Mlp::Forward(const float* in, float* out) const {
   Eigen::Map<Eigen::VectorXf>(out, output_size_) = x->head(output_size_);
 }
 
-void Mlp::ForwardBatch(const Eigen::MatrixXf& in, Eigen::MatrixXf& out) const {
+void Mlp::set_kernel_isa(KernelIsa isa) {
+  VB_DEMAND(KernelIsaAvailable(isa));
+  isa_ = isa;
+}
+
+void Mlp::ForwardBatch(const BatchMatrix& in, BatchMatrix& out) const {
   VB_DEMAND(in.rows() == input_size_);
-  const Eigen::MatrixXf* x = &in;
-  for (size_t k = 0; k < weights_.size(); ++k) {
-    Eigen::MatrixXf& y = (k + 1 == weights_.size()) ? out : (k % 2 == 0 ? batch_a_ : batch_b_);
-    y.noalias() = weights_[k] * (*x);
-    y.colwise() += biases_[k];
-    Apply(activations_[k], y);
-    x = &y;
+  const int n = static_cast<int>(in.cols());
+  if (out.rows() != output_size_ || out.cols() != n) out.resize(output_size_, n);
+  ForwardBatch(in.data(), n, n, out.data(), n);
+}
+
+void Mlp::ForwardBatch(const float* in, int in_stride, int n, float* out, int out_stride) const {
+  const int layers = static_cast<int>(weights_.size());
+  const float* x = in;
+  int x_stride = in_stride;
+  for (int k = 0; k < layers; ++k) {
+    const int rows = static_cast<int>(weights_[k].rows());
+    float* y;
+    int y_stride;
+    if (k + 1 == layers) {
+      y = out;
+      y_stride = out_stride;
+    } else {
+      BatchMatrix& m = k % 2 == 0 ? batch_a_ : batch_b_;
+      if (m.rows() < rows || m.cols() < n) m.resize(std::max<long>(m.rows(), rows), std::max<long>(m.cols(), n));
+      y = m.data();
+      y_stride = static_cast<int>(m.cols());
+    }
+    const bool relu = activations_[k] == Activation::kRelu;
+    DenseBatch(isa_, dense_w_[k].data(), biases_[k].data(), static_cast<int>(weights_[k].cols()),
+               rows, relu, x, x_stride, y, y_stride, n);
+    if (!relu && activations_[k] != Activation::kNone) {
+      for (int r = 0; r < rows; ++r) {
+        Apply(activations_[k], Eigen::Map<Eigen::MatrixXf>(y + static_cast<long>(r) * y_stride, n, 1));
+      }
+    }
+    x = y;
+    x_stride = y_stride;
   }
 }
 

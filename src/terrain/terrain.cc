@@ -1,7 +1,10 @@
 #include "vb/terrain/terrain.h"
+#include "vb/terrain/terrain_heights.h"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 
 #include "vb/engine/error.h"
 
@@ -80,6 +83,29 @@ double Terrain::Height(double x_m, double y_m) const {
   double dh_du, dh_dv;
   return PlaneHeight(grid_, Locate(grid_, 0.5 * size_x_m_, 0.5 * size_y_m_, dx_, dy_, x_m, y_m),
                      &dh_du, &dh_dv);
+}
+
+void Heights(const Terrain& terrain, const double* x_m, const double* y_m, int n, double* out) {
+  const HeightGrid& grid = terrain.grid();
+  const double half_x = 0.5 * terrain.size_x_m(), half_y = 0.5 * terrain.size_y_m();
+  const double dx = terrain.spacing_x_m(), dy = terrain.spacing_y_m();
+  const double* h = grid.heights_m.data();
+  const int cols = grid.cols;
+  for (int i = 0; i < n; ++i) {
+    const CellCoords p = Locate(grid, half_x, half_y, dx, dy, x_m[i], y_m[i]);
+    const double* row0 = h + static_cast<size_t>(p.r) * cols + p.c;
+    const double* row1 = row0 + cols;
+    // both triangles' planes, as PlaneHeight computes them, then a select
+    const double lower = row0[0] + p.fu * (row0[1] - row0[0]) + p.fv * (row1[0] - row0[0]);
+    const double upper = row1[1] - (1.0 - p.fu) * (row1[1] - row1[0]) - (1.0 - p.fv) * (row1[1] - row0[1]);
+    // select by bit mask: no branch for the predictor to miss (the same value as PlaneHeight's)
+    const uint64_t take_lower = -static_cast<uint64_t>(p.fu + p.fv <= 1.0);
+    uint64_t lo_bits, up_bits;
+    std::memcpy(&lo_bits, &lower, sizeof lower);
+    std::memcpy(&up_bits, &upper, sizeof upper);
+    const uint64_t bits = (lo_bits & take_lower) | (up_bits & ~take_lower);
+    std::memcpy(&out[i], &bits, sizeof bits);
+  }
 }
 
 Vec3 Terrain::Normal(double x_m, double y_m) const {

@@ -12,6 +12,9 @@
 #include "vb/engine/error.h"
 #include "vb/terrain/gt_maps.h"
 
+// Heap allocations of this test binary so far (counted in mppi_core_test.cc).
+long VbTestAllocations();
+
 namespace vb::controllers {
 namespace {
 
@@ -69,6 +72,21 @@ TEST(HybridControllerTest, SteersTowardsTheGoalDeterministically) {
     std::unique_ptr<Controller> c = a->Clone();
     const Observation o = ObsAt(0.4, Vec2(8.0, 6.0));
     EXPECT_EQ(c->Update(o).steering, a->Update(o).steering) << name;
+  }
+}
+
+TEST(HybridControllerTest, AnUpdateAllocatesNothingAfterTheFirst) {
+  // the hot-loop rule: the scratch (batch matrices, terrain features, TNT's map) is sized by the
+  // first update; the later ones, rollouts and network evaluations included, allocate nothing
+  const terrain::TaskSpec task = test::PlaneTask(128.0);
+  const terrain::GroundTruthMaps maps(task);
+  for (const char* name : {"wmvct", "mppi6", "tal", "tnt"}) {
+    std::unique_ptr<Controller> c = MakeController(name, &Store());
+    c->Reset(ContextOf(task, maps));
+    c->Update(ObsAt(0.0, Vec2(8.0, 6.0)));
+    const long before = VbTestAllocations();
+    for (int i = 1; i <= 3; ++i) c->Update(ObsAt(0.05 * i, Vec2(8.0, 6.0)));
+    EXPECT_EQ(VbTestAllocations(), before) << name;
   }
 }
 

@@ -66,15 +66,15 @@ TEST(HybridModelsTest, NetworksMatchPyTorchOnFixedInputs) {
   const nn::TensorSet fx = io::ReadSafetensors(kFixture);
   {
     const WmvctNetworks w(Store().Load("models/wmvct.safetensors"));
-    Eigen::MatrixXf out;
+    nn::BatchMatrix out;
     w.net.ForwardBatch(Columns(fx.at("wmvct.input")), out);
     ExpectClose(out, fx.at("wmvct.output"), "wmvct");
   }
   {
     const Mppi6Networks m(Store().Load("models/mppi6.safetensors"));
     ASSERT_EQ(m.members.size(), 5u);
-    const Eigen::MatrixXf in = Columns(fx.at("mppi6.input"));
-    Eigen::MatrixXf out, sum = Eigen::MatrixXf::Zero(2, in.cols());
+    const nn::BatchMatrix in = Columns(fx.at("mppi6.input"));
+    nn::BatchMatrix out, sum = nn::BatchMatrix::Zero(2, in.cols());
     for (const nn::Mlp& member : m.members) {
       member.ForwardBatch(in, out);
       sum += out;
@@ -83,8 +83,8 @@ TEST(HybridModelsTest, NetworksMatchPyTorchOnFixedInputs) {
   }
   {
     const TalNetworks t(Store().Load("models/tal.safetensors"));
-    Eigen::MatrixXf in = Columns(fx.at("tal.input")), qi, qo, out;
-    t.Forward(in, qi, qo, out);
+    nn::BatchMatrix in = Columns(fx.at("tal.input")), out;
+    t.Forward(in, out);
     ExpectClose(out, fx.at("tal.output"), "tal (attention + head)");
   }
   {
@@ -92,7 +92,7 @@ TEST(HybridModelsTest, NetworksMatchPyTorchOnFixedInputs) {
     (void)tm;   // the map's network is tnt.trav; checked through the Mlp directly
     const nn::Mlp trav(Store().Load("models/tnt.safetensors"), "tnt.trav",
                        {nn::Activation::kRelu, nn::Activation::kRelu, nn::Activation::kNone});
-    Eigen::MatrixXf out;
+    nn::BatchMatrix out;
     trav.ForwardBatch(Columns(fx.at("tnt.input")), out);
     ExpectClose(out, fx.at("tnt.output"), "tnt");
   }

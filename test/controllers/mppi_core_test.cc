@@ -14,6 +14,8 @@
 
 // Counts heap allocations of this test binary (the hot-loop rule: an update allocates nothing).
 static std::atomic<long> g_allocations{0};
+// For the other tests of this binary (hybrid_controller_test.cc).
+long VbTestAllocations() { return g_allocations.load(); }
 void* operator new(std::size_t n) {
   ++g_allocations;
   if (void* p = std::malloc(n == 0 ? 1 : n)) return p;

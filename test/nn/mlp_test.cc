@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -52,19 +53,39 @@ TEST(Mlp, BatchEqualsSingleBitForBit) {
   const TensorSet set = io::ReadSafetensors(kFixture);
   const Mlp mlp(set, "net", FixtureActivations(set));
   const Tensor& in = set.at("inputs");
-  Eigen::MatrixXf batch(11, 5);
+  BatchMatrix batch(11, 5);
   for (int s = 0; s < 5; ++s)
     for (int i = 0; i < 11; ++i) batch(i, s) = in.data[11 * s + i];
-  Eigen::MatrixXf out;
+  BatchMatrix out;
   mlp.ForwardBatch(batch, out);
   ASSERT_EQ(out.rows(), 3);
   ASSERT_EQ(out.cols(), 5);
   for (int s = 0; s < 5; ++s) {
     float single[3];
     mlp.Forward(&in.data[11 * s], single);
-    // Same products, possibly another summation order in Eigen's matrix-matrix kernel.
+    // Same products; Forward's Eigen matrix-vector product may sum in another order.
     for (int j = 0; j < 3; ++j) EXPECT_NEAR(out(j, s), single[j], 1e-6);
   }
+}
+
+TEST(Mlp, BatchIsTheSameBitsOnEveryKernelPathAndBatchSize) {
+  // the baseline (SSE2) and AVX2 kernels, and a column evaluated alone or among 37 others
+  const TensorSet set = io::ReadSafetensors(kFixture);
+  Mlp base(set, "net", FixtureActivations(set)), wide(set, "net", FixtureActivations(set));
+  base.set_kernel_isa(KernelIsa::kBaseline);
+  BatchMatrix batch(11, 37);
+  for (int s = 0; s < 37; ++s)
+    for (int i = 0; i < 11; ++i) batch(i, s) = std::sin(0.37f * s + 1.3f * i) * (1.0f + 0.1f * s);
+  BatchMatrix out_base, out_one;
+  base.ForwardBatch(batch, out_base);
+  const BatchMatrix col = batch.col(23);
+  base.ForwardBatch(col, out_one);
+  for (int j = 0; j < 3; ++j) EXPECT_EQ(out_one(j, 0), out_base(j, 23));
+  if (!KernelIsaAvailable(KernelIsa::kAvx2)) GTEST_SKIP() << "no AVX2 on this CPU";
+  wide.set_kernel_isa(KernelIsa::kAvx2);
+  BatchMatrix out_wide;
+  wide.ForwardBatch(batch, out_wide);
+  EXPECT_EQ(0, std::memcmp(out_base.data(), out_wide.data(), out_base.size() * sizeof(float)));
 }
 
 TEST(Mlp, WrongArchitectureIsAnInputErrorNamingTheFile) {

@@ -1,7 +1,9 @@
 // Tests for src/terrain/terrain.cc: the triangulated surface against analytic surfaces.
 #include "vb/terrain/terrain.h"
+#include "vb/terrain/terrain_heights.h"
 
 #include <cmath>
+#include <cstring>
 #include <functional>
 #include <vector>
 
@@ -48,6 +50,31 @@ TEST(TerrainTest, ReproducesPlaneExactlyAtRandomPoints) {
     const double x = rng.Uniform(-15.0, 15.0);
     const double y = rng.Uniform(-9.0, 9.0);
     EXPECT_NEAR(terrain.Height(x, y), PlaneZ(x, y), 1e-12);
+  }
+}
+
+TEST(TerrainTest, BatchedHeightsEqualHeightBitForBit) {
+  // a rough surface, points inside, outside (clamped), on vertices and diagonals, and a NaN
+  const Terrain terrain(SampledTask(17, 23, 30.0, 18.0, [](double x, double y) {
+    return Paraboloid(x, y) + 0.3 * std::sin(3.1 * x) * std::cos(2.3 * y);
+  }));
+  Rng rng(11);
+  std::vector<double> x, y;
+  for (int i = 0; i < 5000; ++i) {
+    x.push_back(rng.Uniform(-20.0, 20.0));
+    y.push_back(rng.Uniform(-12.0, 12.0));
+  }
+  for (int c = 0; c < 23; ++c) {
+    x.push_back(-15.0 + c * 30.0 / 22);
+    y.push_back(9.0 - c * 18.0 / 16 * 0.5);
+  }
+  x.push_back(std::nan(""));
+  y.push_back(1.0);
+  std::vector<double> batch(x.size());
+  Heights(terrain, x.data(), y.data(), static_cast<int>(x.size()), batch.data());
+  for (size_t i = 0; i < x.size(); ++i) {
+    const double one = terrain.Height(x[i], y[i]);
+    ASSERT_EQ(0, std::memcmp(&one, &batch[i], sizeof(double))) << "point " << i << " (" << x[i] << ", " << y[i] << ")";
   }
 }
 

@@ -15,6 +15,7 @@
 #include "vb/controllers/hybrid_cost.h"
 #include "vb/controllers/hybrid_models.h"
 #include "vb/controllers/mppi_core.h"
+#include "vb/controllers/mppi_front_end.h"
 #include "vb/controllers/traversability_map.h"
 #include "vb/nn/model_store.h"
 
@@ -27,16 +28,8 @@ struct HybridControllerParams {
   BicycleModelParams bicycle;               // bicycle.scale is set from the episode
   HybridCostParams cost;
   TraversabilityMapParams trav;
-  double update_period_s = 0.05;            // 20 Hz
-  bool widen_near_goal = true;              // speed bounds [-1, 1] near the local goal (not MPPI-6)
-  double near_goal_m = 2.0;
-  MppiControl near_goal_u_min = {-1.0, -1.0};
-  MppiControl near_goal_u_max = {1.0, 1.0};
+  MppiFrontEndParams front;                 // as MPPI (MPPI-6: no near-goal widening)
   double steering_rate_per_s = 0.0;         // 0: none; MPPI-6: 10 (0.05 per 5 ms, as PID)
-  double target_speed_mps = 4.0;
-  double speed_kp = 1.0;
-  double lookahead_m = 10.0;
-  double replan_period_s = 0.1;
   uint64_t seed_salt = 0x485942ull;         // "HYB" (xor the system index)
 };
 
@@ -62,21 +55,20 @@ class HybridController : public Controller {
   const MppiCore& core() const { return core_; }
   const HybridRolloutModel& model() const { return model_; }
   const TraversabilityMap* traversability() const { return trav_ ? &*trav_ : nullptr; }
-  long updates() const { return updates_; }
+  long updates() const { return front_.updates(); }
 
  private:
   HybridSystem system_;
   HybridControllerParams params_;
   std::string name_;
   EpisodeContext context_;
+  MppiFrontEnd front_;
   MppiCore core_;
   HybridRolloutModel model_;
   std::optional<TraversabilityMap> trav_;
   std::optional<HybridCost> cost_;
-  double last_update_s_ = -1e9;
   double planned_steering_ = 0.0;
   double steering_ = 0.0;
-  long updates_ = 0;
 };
 
 // The registry's entry: builds `name` (wmvct, mppi6, tal, tnt) with the weights of

@@ -39,10 +39,11 @@ constexpr int kTerrainGridCentre = 7;
 constexpr std::array<double, 5> kTerrainGridForward_m = {2.0, 1.0, 0.0, -1.0, -2.0};
 constexpr std::array<double, 3> kTerrainGridLeft_m = {1.0, 0.0, -1.0};
 
-// Writes the 15 grid heights of pose (x, y, yaw) minus the centre height into out[0..14] and
-// returns the centre height (the surface the wheels touch: Terrain::Height).
+// Writes the 15 grid heights of pose (x, y, yaw) minus the centre height into out[0], out[stride],
+// ..., out[14 * stride] and returns the centre height (the surface the wheels touch:
+// Terrain::Height).
 double TerrainShape(const terrain::Terrain& terrain, double x_m, double y_m, double yaw_rad,
-                    float* out);
+                    float* out, int stride = 1);
 
 // The networks of one system, built from a model file's tensors (throws InputError naming the
 // file and tensor when they do not fit). Copied per controller (an Mlp keeps scratch buffers).
@@ -59,10 +60,13 @@ struct TalNetworks {
   explicit TalNetworks(const nn::TensorSet& t);
   // One batched step: `in` is (4 + 15) x n, rows 0-3 the context (roll, pitch, step length,
   // steering), rows 4-18 the terrain shape, replaced by the attended heights (15 x softmax
-  // weight x height); `out` becomes 6 x n (body dx, dy, dyaw, world dz, roll, pitch). query_in,
-  // query_out: scratch.
-  void Forward(Eigen::MatrixXf& in, Eigen::MatrixXf& query_in, Eigen::MatrixXf& query_out,
-               Eigen::MatrixXf& out) const;
+  // weight x height); `out` becomes 6 x n (body dx, dy, dyaw, world dz, roll, pitch). No
+  // allocation once the scratch has the batch's size.
+  void Forward(nn::BatchMatrix& in, nn::BatchMatrix& out) const;
+
+ private:
+  mutable nn::BatchMatrix logits_;
+  mutable std::vector<float> max_, total_;
 };
 
 enum class HybridDynamics { kWmvct, kMppi6, kTal };
@@ -96,7 +100,7 @@ class HybridRolloutModel : public RolloutModel {
   std::optional<TalNetworks> tal_;
   const terrain::Terrain* terrain_ = nullptr;
   // Scratch, sized on the first call (K is fixed for a controller): no allocation afterwards.
-  mutable Eigen::MatrixXf in_, out_, query_in_, query_out_, sum_;
+  mutable nn::BatchMatrix in_, out_, sum_;
   mutable std::vector<float> centre_;
 };
 

@@ -11,6 +11,7 @@
 #include "vb/controllers/bicycle_model.h"
 #include "vb/controllers/controller.h"
 #include "vb/controllers/mppi_core.h"
+#include "vb/controllers/mppi_front_end.h"
 #include "vb/controllers/mppi_goal_cost.h"
 
 namespace vb::controllers {
@@ -19,16 +20,8 @@ struct MppiControllerParams {
   MppiParams core;
   BicycleModelParams model;                 // model.scale is set from the episode
   GoalObstacleCostParams cost;
-  double update_period_s = 0.05;            // 20 Hz
-  // Within this distance of the local goal the speed bounds widen to [-1, 1] (the original's
-  // rule; the local goal is 10 m ahead except at the end of the path). Multiplied by the scale.
-  double near_goal_m = 2.0;
-  MppiControl near_goal_u_min = {-1.0, -1.0};
-  MppiControl near_goal_u_max = {1.0, 1.0};
-  double target_speed_mps = 4.0;
-  double speed_kp = 1.0;
-  double lookahead_m = 10.0;                // multiplied by the environment scale
-  double replan_period_s = 0.1;
+  // The 20 Hz update, the local goal, the near-goal bounds, the fixed-speed throttle.
+  MppiFrontEndParams front;
   uint64_t seed_salt = 0x4D505049ull;       // "MPPI": its noise stream differs from other users'
 };
 
@@ -50,18 +43,17 @@ class MppiController : public Controller {
   std::unique_ptr<Controller> Clone() const override;
 
   const MppiCore& core() const { return core_; }
-  long updates() const { return updates_; }
+  long updates() const { return front_.updates(); }
 
  private:
   MppiControllerParams params_;
   std::string name_;
   EpisodeContext context_;
+  MppiFrontEnd front_;
   MppiCore core_;
   BicycleModel model_;
   std::optional<GoalObstacleCost> cost_;
-  double last_update_s_ = -1e9;
   double steering_ = 0.0;
-  long updates_ = 0;
 };
 
 }  // namespace vb::controllers

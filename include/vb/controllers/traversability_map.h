@@ -44,14 +44,15 @@ class TraversabilityMap {
   double At(int row, int col) const { return 1.0 - cost_[static_cast<size_t>(row) * params_.cells + col]; }
 
  private:
+  // The network's 25 inputs of one point into col[0], col[stride], ...
   void FillInput(const terrain::GroundTruthMaps& maps, const Vec2& p_m, double yaw_rad,
-                 float* col) const;
+                 float* col, int stride) const;
 
   TraversabilityMapParams params_;
   nn::Mlp net_;
   Vec2 origin_m_ = Vec2::Zero();   // centre of cell (0, 0)
   std::vector<double> cost_;       // cells x cells, row-major
-  mutable Eigen::MatrixXf in_, out_;
+  nn::BatchMatrix in_, out_;
 };
 
 }  // namespace vb::controllers
