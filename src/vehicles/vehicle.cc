@@ -506,11 +506,13 @@ void Vehicle::Synchronize(double dt) {
 
     const bool rigid_contact = geo.in_contact && f.normal_force_n > 0.0;
     const bool soil_contact = soil_out.on_soil && soil_out.normal_force_n > 0.0;
+    // at a seam: the surface that carries more of the wheel, with the soil's sinkage only if
+    // that is the soil (a wheel reported on rigid ground has no sinkage)
+    const bool soil_carries_most = soil_contact && soil_out.normal_force_n >= f.normal_force_n;
     ws.in_contact = rigid_contact || soil_contact;
-    ws.surface = soil_contact && soil_out.normal_force_n >= f.normal_force_n ? soil_out.surface
-                                                                             : geo.surface;
+    ws.surface = soil_carries_most ? soil_out.surface : geo.surface;
     ws.normal_force_n = f.normal_force_n + (soil_out.on_soil ? soil_out.normal_force_n : 0.0);
-    ws.sinkage_m = soil_out.on_soil ? soil_out.sinkage_m : 0.0;
+    ws.sinkage_m = soil_carries_most ? soil_out.sinkage_m : 0.0;
   }
   AddBodyContacts();
 }
