@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <string>
 #include <utility>
 
@@ -34,6 +35,9 @@ constexpr double kErosionSettled_m = 1e-5;
 // Smallest cosine between the wheel-surface normal and the vertical used to turn a grid cell's
 // horizontal area into the wheel-surface area above it (78 degrees: the deepest snow rut).
 constexpr double kMinCos = 0.2;
+// Slack (m) of the belt scan's quick rejects against the rounding of an interpolated belt
+// height (~1e-13 m): a reject needs the belt this much above the bound.
+constexpr double kScanMargin_m = 1e-7;
 
 struct Node {
   double base_m = 0.0;        // initial terrain level
@@ -45,13 +49,64 @@ struct Node {
   int32_t contact_step = -2;  // last step with wheel contact
   int32_t mark_step = -2;     // scratch stamp (rim membership in EndStep)
   int32_t queue_stamp = -1;   // scratch stamp (erosion work list membership)
+  int32_t tile = -1;          // allocation index of the node's tile (in the struct's padding)
 };
+
+static_assert(sizeof(Node) == 72, "the tile index lives in Node's padding");
 
 struct Tile {
   Node nodes[kTileSize * kTileSize];
+  // Per tile row: an upper bound on the level of its deformable nodes (the highest level0 any
+  // of them has had; levels only sink below level0). -1e300: no deformable node in the row.
+  double row_top_m[kTileSize];
 };
 
 double Level(const Node& n) { return n.level0_m - n.plastic_m / n.cos_slope; }
+
+// A lower bound on std::pow(z, n) (n > 0) from two small tables, to decide the Bekker yield test
+// "sigma > kb z^n" without pow where the answer is clear (most contact nodes are elastic: a belt
+// or a wheel reloading soil it compacted before). z = m 2^e with m in [1, 2): z^n >= (2^e)^n
+// (m_b)^n for the bin's lower edge m_b = 1 + b / 256, and the tables hold pow() of the exact
+// points 2^e and m_b (each within an ulp of the true power) times (1 - 1e-12), which covers
+// their rounding, the product's and pow's own error (< 1 ulp) thousands of times over. So
+// sigma <= kb * Bound(z) implies !(sigma > kb * std::pow(z, n)) for kb >= 0, exactly as the full
+// evaluation decides it: results are bit-identical. NaN (no bound: fall back to pow) outside
+// [2^kMinExp, 2^kMaxExp), for z <= 0, subnormal or not finite.
+class PowLowerBound {
+ public:
+  void Init(double n) {
+    enabled_ = n > 0.0 && std::isfinite(n);
+    if (!enabled_) return;
+    for (int e = kMinExp; e < kMaxExp; ++e) {
+      by_exponent_[e - kMinExp] = std::pow(std::ldexp(1.0, e), n);
+    }
+    for (int b = 0; b < kBins; ++b) {
+      by_mantissa_[b] = std::pow(1.0 + static_cast<double>(b) / kBins, n) * (1.0 - 1e-12);
+    }
+  }
+  double operator()(double z) const {
+    uint64_t bits = 0;
+    std::memcpy(&bits, &z, sizeof bits);
+    const int e = static_cast<int>(bits >> 52) - 1023;  // sign bit set: far below kMinExp
+    if (!enabled_ || e < kMinExp || e >= kMaxExp) return std::nan("");
+    const auto b = static_cast<size_t>((bits >> (52 - kBinBits)) & (kBins - 1));
+    return by_exponent_[static_cast<size_t>(e - kMinExp)] * by_mantissa_[b];
+  }
+
+ private:
+  static constexpr int kMinExp = -40, kMaxExp = 8;  // 1e-12 m .. 256 m
+  static constexpr int kBinBits = 8, kBins = 1 << kBinBits;
+  bool enabled_ = false;
+  double by_exponent_[kMaxExp - kMinExp] = {};
+  double by_mantissa_[kBins] = {};
+};
+
+// z >= Level(n), without the division when z is at or above the undisturbed level (the level is
+// never above level0 while the plastic sinkage is >= 0; the sign test keeps it exact).
+bool AboveLevel(const Node& n, double z) {
+  if (z >= n.level0_m && n.plastic_m >= 0.0) return true;
+  return z >= Level(n);
+}
 
 // Lowest point of the wheel cylinder (centre c, unit axis a, radius r, half width hw) on the
 // vertical line through (x, y); false if the line misses the tread. `lat` is the position
@@ -105,12 +160,23 @@ struct ScmSoil::Impl {
   std::vector<std::unique_ptr<Tile>> tiles;  // in allocation order
   std::array<SoilParams, 3> soils;
   std::array<double, 3> tan_friction{};  // tan of each soil's friction angle (per node otherwise)
+  std::array<PowLowerBound, 3> pow_bound;  // z^bekker_n from below, per soil
+  // The Bekker yield test: sigma > kb z^n with soil `slot`'s exponent n; on yield *p_bekker is
+  // kb * std::pow(z, n). Skips pow where the table bound already shows sigma below it.
+  bool Yields(size_t slot, double kb, double z, double sigma, double* p_bekker) const {
+    if (kb >= 0.0 && sigma <= kb * pow_bound[slot](z)) return false;
+    *p_bekker = kb * std::pow(z, soils[slot].bekker_n);
+    return sigma > *p_bekker;
+  }
   int32_t step = 0;
   ScmStats stats;
   double max_raise_m = 0.0;   // highest level0 - base of any node so far (scan bound)
   void Raise(Node* n, double dh) {
     n->level0_m += dh;
     max_raise_m = std::max(max_raise_m, n->level0_m - n->base_m);
+    Tile& t = *tiles[static_cast<size_t>(n->tile)];
+    double& top = t.row_top_m[(n - t.nodes) >> kTileBits];
+    top = std::max(top, n->level0_m);
   }
 
   // This step's contacts, wheel by wheel (ranges into `contacts`).
@@ -182,15 +248,19 @@ struct ScmSoil::Impl {
 
   int32_t Allocate(int tx, int ty) {
     auto tile = std::make_unique<Tile>();
+    const auto id = static_cast<int32_t>(tiles.size());
     for (int b = 0; b < kTileSize; ++b) {
+      tile->row_top_m[b] = -1e300;
       for (int a = 0; a < kTileSize; ++a) {
         Node& n = tile->nodes[b * kTileSize + a];
+        n.tile = id;
         const int i = i_min + tx * kTileSize + a, j = j_min + ty * kTileSize + b;
         if (i > i_max || j > j_max) continue;  // beyond the world edge: stays rigid
         const terrain::SurfacePoint sp = terrain.Query(i * dx, j * dx);
         n.base_m = n.level0_m = sp.height_m;
         n.cos_slope = static_cast<float>(std::max(0.05, sp.normal_W.z()));
         n.slot = static_cast<int8_t>(SoilSlot(sp.surface));
+        if (n.slot >= 0) tile->row_top_m[b] = std::max(tile->row_top_m[b], n.level0_m);
       }
     }
     tiles.push_back(std::move(tile));
@@ -232,6 +302,7 @@ ScmSoil::ScmSoil(const terrain::Terrain& terrain, const SoilConfig& config)
       m.soils[k].elastic_stiffness_papm =
           std::max(m.soils[k].elastic_stiffness_papm, m.soils[k].bekker_kphi);
       m.tan_friction[k] = std::tan(m.soils[k].friction_angle_rad);
+      m.pow_bound[k].Init(m.soils[k].bekker_n);
     }
   }
   m.dx = config_.grid_spacing_m;
@@ -340,9 +411,10 @@ WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
     const double z = ca * (n.level0_m - h.p.z());  // sinkage along the terrain normal
     const double ke = s.elastic_stiffness_papm * k_scale;
     double sigma = ke * (z - n.plastic_m);  // elastic trial
-    const double p_bekker = (s.bekker_kc / b + s.bekker_kphi) * std::pow(z, s.bekker_n);
+    double p_bekker = 0.0;
     double flow = 0.0;
-    if (sigma > p_bekker) {  // yield: plastic sinkage follows
+    if (m.Yields(static_cast<size_t>(n.slot), s.bekker_kc / b + s.bekker_kphi, z, sigma,
+                 &p_bekker)) {  // yield: plastic sinkage follows
       sigma = p_bekker;
       const double plastic = z - p_bekker / ke;
       flow = (plastic - n.plastic_m) / ca;
@@ -539,9 +611,9 @@ TrackSoilOutput ScmSoil::TrackContact(const TrackSoilInput& tr, double dt) {
       while (i <= i1) {
         const int chunk_end =
             std::min(i1, m.i_min + (((i - m.i_min) >> kTileBits) + 1) * kTileSize - 1);
+        // The first node in this tile that the belt covers: the one tile look-up (which
+        // allocates the tile), the other nodes by pointer offset.
         Node* base = nullptr;
-        int base_i = 0;
-        bool looked_up = false;
         for (; i <= chunk_end; ++i) {
           const double ux = i * dx - ax;
           const double t = t_row + ux * sx / len2;
@@ -549,16 +621,44 @@ TrackSoilOutput ScmSoil::TrackContact(const TrackSoilInput& tr, double dt) {
           if (std::abs(l) > hw_scan || t < 0.0 || t > t_end) continue;
           const double cover = std::min(1.0, (half_w - std::abs(l)) / dx + 0.5);
           if (!(cover > 0.0)) continue;
-          if (!looked_up) {
-            base = m.At(i, j, true);
-            base_i = i;
-            looked_up = true;
-          }
-          if (base == nullptr) continue;   // outside the world
+          base = m.At(i, j, true);
+          break;
+        }
+        if (i > chunk_end) continue;   // the belt covers no node of this chunk
+        const int base_i = i;
+        if (base == nullptr) {         // outside the world
+          i = chunk_end + 1;
+          continue;
+        }
+        // Quick rejects, exact (no node they skip could be a contact): the belt height is
+        // linear along the row, so its lowest node over the chunk is an end; above the tile
+        // row's soil top the whole chunk is skipped, and a node with the belt above its
+        // undisturbed level (never below its level) without the full test. kScanMargin_m
+        // covers the rounding of the interpolated height against the per-node evaluation.
+        const double ux0 = base_i * dx - ax, ux1 = chunk_end * dx - ax;
+        const double z0 = az + (t_row + ux0 * sx / len2) * dz + (l_row + ux0 * lx) * tilt;
+        const double z1 = az + (t_row + ux1 * sx / len2) * dz + (l_row + ux1 * lx) * tilt;
+        const Tile& tile = *m.tiles[static_cast<size_t>(base->tile)];
+        if (std::min(z0, z1) - kScanMargin_m >= tile.row_top_m[(base - tile.nodes) >> kTileBits]) {
+          i = chunk_end + 1;
+          continue;
+        }
+        const double z_step = chunk_end > base_i ? (z1 - z0) / (chunk_end - base_i) : 0.0;
+        for (; i <= chunk_end; ++i) {
           Node* node = base + (i - base_i);  // beyond i_max: a rigid node (slot -1), skipped
           if (node->slot < 0) continue;
+          if (node->plastic_m >= 0.0 &&
+              z0 + (i - base_i) * z_step - kScanMargin_m >= node->level0_m) {
+            continue;
+          }
+          const double ux = i * dx - ax;
+          const double t = t_row + ux * sx / len2;
+          const double l = l_row + ux * lx;
+          if (std::abs(l) > hw_scan || t < 0.0 || t > t_end) continue;
+          const double cover = std::min(1.0, (half_w - std::abs(l)) / dx + 0.5);
+          if (!(cover > 0.0)) continue;
           const double hit_z = az + t * dz + l * tilt;
-          if (hit_z >= Level(*node)) continue;
+          if (AboveLevel(*node, hit_z)) continue;
           m.hits.push_back({node, i, j, Vec3(i * dx, j * dx, hit_z), l, t, cover});
         }
       }
@@ -587,9 +687,10 @@ TrackSoilOutput ScmSoil::TrackContact(const TrackSoilInput& tr, double dt) {
       const double z = ca * (nd.level0_m - h.p.z());
       const double ke = sp.elastic_stiffness_papm * k_scale;
       double sigma = ke * (z - nd.plastic_m);
-      const double p_bekker = (sp.bekker_kc / bb + sp.bekker_kphi) * std::pow(z, sp.bekker_n);
+      double p_bekker = 0.0;
       double flow = 0.0;
-      if (sigma > p_bekker) {
+      if (m.Yields(static_cast<size_t>(nd.slot), sp.bekker_kc / bb + sp.bekker_kphi, z, sigma,
+                   &p_bekker)) {
         sigma = p_bekker;
         const double plastic = z - p_bekker / ke;
         flow = (plastic - nd.plastic_m) / ca;
