@@ -38,6 +38,8 @@ constexpr double kMinCos = 0.2;
 // Slack (m) of the belt scan's quick rejects against the rounding of an interpolated belt
 // height (~1e-13 m): a reject needs the belt this much above the bound.
 constexpr double kScanMargin_m = 1e-7;
+// The 4-neighbour offsets, in the order every pass visits them.
+constexpr int kDi[4] = {1, -1, 0, 0}, kDj[4] = {0, 0, 1, -1};
 
 struct Node {
   double base_m = 0.0;        // initial terrain level
@@ -207,6 +209,8 @@ struct ScmSoil::Impl {
   // the rim they started at; `pending` carries nodes still changing at the end of a step over.
   struct Work {
     int i, j, ring;
+    Node* node;   // the node at (i, j): valid within a step only (rim, active, next); pending
+                  // (carried over a step and a Restore) is looked up again
   };
   std::vector<Work> rim, active, next, pending;
   int32_t queue_stamp = 0;
@@ -226,24 +230,15 @@ struct ScmSoil::Impl {
     return &tiles[static_cast<size_t>(idx)]->nodes[(lj & kTileMask) * kTileSize + (li & kTileMask)];
   }
 
-  // The 4-neighbour e (+i, -i, +j, -j) of node n at (i, j): inside n's tile by pointer offset
-  // (the hot path of the rim and erosion passes), else through At. Same node as At(ni, nj, ...).
-  Node* Neighbour(Node* n, int i, int j, int e, bool allocate) {
+  // The 4-neighbours of node n at (i, j) in the order +i, -i, +j, -j (kDi, kDj), the same
+  // nodes as At(i + kDi[e], j + kDj[e], allocate) and looked up (allocated) in that order: inside
+  // n's tile by pointer offset (the hot path of the rim and erosion passes), else through At.
+  void Neighbours(Node* n, int i, int j, bool allocate, Node* nb[4]) {
     const int li = (i - i_min) & kTileMask, lj = (j - j_min) & kTileMask;
-    switch (e) {
-      case 0:
-        if (li != kTileMask && i < i_max) return n + 1;
-        return At(i + 1, j, allocate);
-      case 1:
-        if (li != 0) return n - 1;
-        return At(i - 1, j, allocate);
-      case 2:
-        if (lj != kTileMask && j < j_max) return n + kTileSize;
-        return At(i, j + 1, allocate);
-      default:
-        if (lj != 0) return n - kTileSize;
-        return At(i, j - 1, allocate);
-    }
+    nb[0] = li != kTileMask && i < i_max ? n + 1 : At(i + 1, j, allocate);
+    nb[1] = li != 0 ? n - 1 : At(i - 1, j, allocate);
+    nb[2] = lj != kTileMask && j < j_max ? n + kTileSize : At(i, j + 1, allocate);
+    nb[3] = lj != 0 ? n - kTileSize : At(i, j - 1, allocate);
   }
 
   int32_t Allocate(int tx, int ty) {
@@ -492,7 +487,7 @@ void ScmSoil::Impl::DepositOnRim(const Patch& patch, size_t begin, double volume
                                         t >= 0.0 && t <= 1.0
                                   : WheelBottomAt(patch.center, patch.axis, patch.radius,
                                                   patch.half_width, w.i * dx, w.j * dx, &z, &lat);
-    if (under) room[k] = std::max(0.0, z - Level(*At(w.i, w.j, false)));
+    if (under) room[k] = std::max(0.0, z - Level(*w.node));
   }
   double remaining = volume;
   size_t open = n;
@@ -503,7 +498,7 @@ void ScmSoil::Impl::DepositOnRim(const Patch& patch, size_t begin, double volume
     bool capped = false;
     for (size_t k = 0; k < n; ++k) {
       if (full[k] || room[k] >= share) continue;
-      Raise(At(rim[begin + k].i, rim[begin + k].j, false), room[k]);
+      Raise(rim[begin + k].node, room[k]);
       remaining -= room[k];
       full[k] = true;
       --open;
@@ -512,13 +507,13 @@ void ScmSoil::Impl::DepositOnRim(const Patch& patch, size_t begin, double volume
     if (capped) continue;
     for (size_t k = 0; k < n; ++k) {
       if (full[k]) continue;
-      Raise(At(rim[begin + k].i, rim[begin + k].j, false), share);
+      Raise(rim[begin + k].node, share);
     }
     remaining = 0.0;
   }
   if (remaining > 0.0) {  // all rim nodes under the tread and full: raise them anyway
     const double share = remaining / static_cast<double>(n);
-    for (size_t k = 0; k < n; ++k) Raise(At(rim[begin + k].i, rim[begin + k].j, false), share);
+    for (size_t k = 0; k < n; ++k) Raise(rim[begin + k].node, share);
   }
 }
 
@@ -748,15 +743,16 @@ void ScmSoil::EndStep(double /*dt*/) {
       for (size_t k = patch.begin; k < patch.end; ++k) {
         const Impl::Contact& ct = m.contacts[k];
         volume += ct.flow_m;
-        const int di[4] = {1, -1, 0, 0}, dj[4] = {0, 0, 1, -1};
+        Node* nbs[4];
+        m.Neighbours(ct.node, ct.i, ct.j, true, nbs);
         for (int e = 0; e < 4; ++e) {
-          Node* nb = m.Neighbour(ct.node, ct.i, ct.j, e, true);
+          Node* nb = nbs[e];
           if (nb == nullptr || nb->slot < 0 || nb->contact_step == m.step ||
               nb->mark_step == m.step) {
             continue;
           }
           nb->mark_step = m.step;
-          m.rim.push_back({ct.i + di[e], ct.j + dj[e], 0});
+          m.rim.push_back({ct.i + kDi[e], ct.j + kDj[e], 0, nb});
         }
       }
       if (volume > 0.0) m.DepositOnRim(patch, rim_begin, bp.flow_factor * volume);
@@ -778,34 +774,36 @@ void ScmSoil::EndStep(double /*dt*/) {
 // it started. Same domain bound and settings, but only nodes that can change are visited.
 void ScmSoil::Impl::Erode(const BulldozingParams& bp) {
   const double threshold = dx * std::tan(bp.erosion_angle_rad);
-  const int di[4] = {1, -1, 0, 0}, dj[4] = {0, 0, 1, -1};
   active.clear();
   auto enqueue = [&](std::vector<Work>* list, Node* n, int i, int j, int ring) {
     if (n->queue_stamp == queue_stamp) return;
     n->queue_stamp = queue_stamp;
-    list->push_back({i, j, ring});
+    list->push_back({i, j, ring, n});
   };
   ++queue_stamp;
-  for (const std::vector<Work>* src : {&rim, &pending}) {
-    for (const Work& w : *src) {
-      Node* n = At(w.i, w.j, false);
-      if (n != nullptr) enqueue(&active, n, w.i, w.j, w.ring);
-    }
+  for (const Work& w : rim) enqueue(&active, w.node, w.i, w.j, w.ring);
+  for (const Work& w : pending) {
+    Node* n = At(w.i, w.j, false);
+    if (n != nullptr) enqueue(&active, n, w.i, w.j, w.ring);
   }
   pending.clear();
   for (int pass = 0; pass < bp.erosion_iterations && !active.empty(); ++pass) {
     ++queue_stamp;
     next.clear();
     for (const Work& w : active) {
-      Node* n = At(w.i, w.j, false);
+      Node* n = w.node;
       ++stats.eroded_node_visits;
       if (n->slot < 0 || n->contact_step == step) continue;
       double level_n = Level(*n);
+      // one look-up for the neighbour's level and, if it moves, the node itself (its tile is
+      // allocated only then: most neighbours are within the threshold). The four neighbours lie
+      // in four different tiles when outside n's, so allocating one leaves the others' nullptr
+      // true.
+      Node* nbs[4];
+      Neighbours(n, w.i, w.j, false, nbs);
       for (int e = 0; e < 4; ++e) {
-        const int ni = w.i + di[e], nj = w.j + dj[e];
-        // one look-up for the neighbour's level and, if it moves, the node itself (its tile is
-        // allocated only then: most neighbours are within the threshold)
-        Node* nb = Neighbour(n, w.i, w.j, e, false);
+        const int ni = w.i + kDi[e], nj = w.j + kDj[e];
+        Node* nb = nbs[e];
         const double dy =
             level_n - (nb != nullptr ? Level(*nb) : terrain.Height(ni * dx, nj * dx));
         if (std::abs(dy) <= threshold) continue;
