@@ -348,25 +348,57 @@ WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
   const int j_hi = static_cast<int>(std::floor((c.y() + ey) / m.dx));
 
   // (1) Geometry: the lowest point of the cylinder above each node, kept if below the soil.
+  const double hw_ext = half_w + 0.5 * m.dx;
+  const double lat_reach = hw_ext + std::abs(a.z()) * std::sqrt(r * r + hw_ext * hw_ext) + 1e-6;
   m.hits.clear();
   for (int j = j_lo; j <= j_hi; ++j) {
-    for (int i = i_lo; i <= i_hi; ++i) {
-      double hit_z = 0.0, lat = 0.0;
-      // Nodes whose cell (+-dx/2 across) overlaps the tread are pressed, each carrying the share
-      // of its cell the tread covers, so the effective width is the wheel's (sum of covers x dx
-      // = width) wherever the wheel stands between grid columns. A node just beyond the tread
-      // edge takes the cylinder's height there (the tread edge, extended by < dx/2).
-      if (!WheelBottomAt(c, a, r, half_w + 0.5 * m.dx, i * m.dx, j * m.dx, &hit_z, &lat)) {
-        continue;
+    // The row tile by tile: one look-up per tile (the first node in it under the tread, as the
+    // node-by-node look-up allocated it), the others by pointer offset.
+    // Only the row's nodes within the tread's lateral reach: a point of the cylinder with
+    // |lat| <= hw_ext is within sqrt(r^2 + hw_ext^2) of the centre, so its horizontal axial
+    // offset ua = lat - t a_z is at most lat_reach (plus 1e-6 m and a node each side for
+    // rounding): the nodes left out are ones WheelBottomAt rejects.
+    int row_lo = i_lo, row_hi = i_hi;
+    if (std::abs(a.x()) > 1e-6) {
+      const double uy = j * m.dx - c.y();
+      double x0 = c.x() + (-lat_reach - uy * a.y()) / a.x();
+      double x1 = c.x() + (lat_reach - uy * a.y()) / a.x();
+      if (x0 > x1) std::swap(x0, x1);
+      row_lo = std::max(row_lo, static_cast<int>(std::floor(x0 / m.dx)) - 1);
+      row_hi = std::min(row_hi, static_cast<int>(std::ceil(x1 / m.dx)) + 1);
+    }
+    int i = row_lo;
+    while (i <= row_hi) {
+      const int chunk_end =
+          std::min(row_hi, m.i_min + (((i - m.i_min) >> kTileBits) + 1) * kTileSize - 1);
+      Node* base = nullptr;
+      int base_i = 0;
+      bool looked_up = false;
+      for (; i <= chunk_end; ++i) {
+        double hit_z = 0.0, lat = 0.0;
+        // Nodes whose cell (+-dx/2 across) overlaps the tread are pressed, each carrying the
+        // share of its cell the tread covers, so the effective width is the wheel's (sum of
+        // covers x dx = width) wherever the wheel stands between grid columns. A node just
+        // beyond the tread edge takes the cylinder's height there (the tread edge, extended by
+        // < dx/2).
+        if (!WheelBottomAt(c, a, r, hw_ext, i * m.dx, j * m.dx, &hit_z, &lat)) {
+          continue;
+        }
+        const double cover = std::min(1.0, (half_w - std::abs(lat)) / m.dx + 0.5);
+        if (!(cover > 0.0)) continue;
+        if (!looked_up) {
+          base = m.At(i, j, true);
+          base_i = i;
+          looked_up = true;
+        }
+        if (base == nullptr) continue;   // outside the world
+        Node* n = base + (i - base_i);   // beyond i_max: a rigid node (slot -1), skipped
+        if (n->slot < 0) continue;
+        if (AboveLevel(*n, hit_z)) continue;
+        const double ux = i * m.dx - c.x(), uy = j * m.dx - c.y();
+        m.hits.push_back(
+            {n, i, j, Vec3(i * m.dx, j * m.dx, hit_z), lat, ux * fwd.x() + uy * fwd.y(), cover});
       }
-      const double cover = std::min(1.0, (half_w - std::abs(lat)) / m.dx + 0.5);
-      if (!(cover > 0.0)) continue;
-      const double ux = i * m.dx - c.x(), uy = j * m.dx - c.y();
-      Node* n = m.At(i, j, true);
-      if (n == nullptr || n->slot < 0) continue;
-      if (hit_z >= Level(*n)) continue;
-      m.hits.push_back(
-          {n, i, j, Vec3(i * m.dx, j * m.dx, hit_z), lat, ux * fwd.x() + uy * fwd.y(), cover});
     }
   }
   if (m.hits.empty()) return out;
