@@ -8,11 +8,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <string>
 #include <utility>
 
 #include "vb/engine/error.h"
+#include "vb/soil/pow_lower_bound.h"
 
 namespace vb::soil {
 
@@ -64,44 +64,6 @@ struct Tile {
 };
 
 double Level(const Node& n) { return n.level0_m - n.plastic_m / n.cos_slope; }
-
-// A lower bound on std::pow(z, n) (n > 0) from two small tables, to decide the Bekker yield test
-// "sigma > kb z^n" without pow where the answer is clear (most contact nodes are elastic: a belt
-// or a wheel reloading soil it compacted before). z = m 2^e with m in [1, 2): z^n >= (2^e)^n
-// (m_b)^n for the bin's lower edge m_b = 1 + b / 256, and the tables hold pow() of the exact
-// points 2^e and m_b (each within an ulp of the true power) times (1 - 1e-12), which covers
-// their rounding, the product's and pow's own error (< 1 ulp) thousands of times over. So
-// sigma <= kb * Bound(z) implies !(sigma > kb * std::pow(z, n)) for kb >= 0, exactly as the full
-// evaluation decides it: results are bit-identical. NaN (no bound: fall back to pow) outside
-// [2^kMinExp, 2^kMaxExp), for z <= 0, subnormal or not finite.
-class PowLowerBound {
- public:
-  void Init(double n) {
-    enabled_ = n > 0.0 && std::isfinite(n);
-    if (!enabled_) return;
-    for (int e = kMinExp; e < kMaxExp; ++e) {
-      by_exponent_[e - kMinExp] = std::pow(std::ldexp(1.0, e), n);
-    }
-    for (int b = 0; b < kBins; ++b) {
-      by_mantissa_[b] = std::pow(1.0 + static_cast<double>(b) / kBins, n) * (1.0 - 1e-12);
-    }
-  }
-  double operator()(double z) const {
-    uint64_t bits = 0;
-    std::memcpy(&bits, &z, sizeof bits);
-    const int e = static_cast<int>(bits >> 52) - 1023;  // sign bit set: far below kMinExp
-    if (!enabled_ || e < kMinExp || e >= kMaxExp) return std::nan("");
-    const auto b = static_cast<size_t>((bits >> (52 - kBinBits)) & (kBins - 1));
-    return by_exponent_[static_cast<size_t>(e - kMinExp)] * by_mantissa_[b];
-  }
-
- private:
-  static constexpr int kMinExp = -40, kMaxExp = 8;  // 1e-12 m .. 256 m
-  static constexpr int kBinBits = 8, kBins = 1 << kBinBits;
-  bool enabled_ = false;
-  double by_exponent_[kMaxExp - kMinExp] = {};
-  double by_mantissa_[kBins] = {};
-};
 
 // z >= Level(n), without the division when z is at or above the undisturbed level (the level is
 // never above level0 while the plastic sinkage is >= 0; the sign test keeps it exact).
