@@ -59,7 +59,8 @@ static_assert(sizeof(Node) == 72, "the tile index lives in Node's padding");
 struct Tile {
   Node nodes[kTileSize * kTileSize];
   // Per tile row: an upper bound on the level of its deformable nodes (the highest level0 any
-  // of them has had; levels only sink below level0). -1e300: no deformable node in the row.
+  // of them has had; levels only sink below level0: a plastic sinkage is never negative but by
+  // rounding, ~1e-17 m, far inside kScanMargin_m). -1e300: no deformable node in the row.
   double row_top_m[kTileSize];
 };
 
