@@ -26,6 +26,9 @@ ObservationConfig LearnedObservationConfig() {
   crop.size_cells = kLearnedCropCells;
   crop.resolution_m = kLearnedCropResolution_m;
   c.crops.push_back(crop);
+  // The policy reads the crop once per decision (LearnedController::Update, calls 0, 20, 40, ...
+  // at 5 ms control), and the crop rebuilds fall on the same instants.
+  c.crop_period_s = kLearnedDecisionPeriod_s;
   return c;
 }
 

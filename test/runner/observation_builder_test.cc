@@ -122,6 +122,45 @@ TEST(ObservationBuilderTest, ReplansEveryTwentyStepsOfFiveMilliseconds) {
   EXPECT_TRUE(b.navigation().path_m.empty());
 }
 
+TEST(ObservationBuilderTest, CropsAreRebuiltEveryCropPeriodAndAtOnceForAFreshObservation) {
+  const terrain::TaskSpec task = test::PlaneTask(128.0, 0.2, 0.0);  // h = 0.2 x
+  const terrain::GroundTruthMaps maps(task, 0);
+  const terrain::OccupancyGrid grid = PlanningGrid(task);
+  ObservationBuilder b(maps, grid, 1.0);
+  controllers::ObservationConfig config;
+  config.crops = {{terrain::MapLayer::kElevation, 4, 1.0}};
+  config.crop_period_s = 0.1;
+  b.SetConfig(config);
+  b.Reset(Vec2(40.0, 0.0));
+  controllers::Observation obs;
+  // The vehicle moves 0.02 m per 5 ms step along x: the crop's centre height (0.2 x) says at
+  // which step it was made.
+  std::vector<int> rebuilt;
+  double last = std::nan("");
+  for (int k = 0; k <= 100; ++k) {
+    const double x = -20.0 + 0.02 * k;
+    b.Build(k * 0.005, StateAt(Vec2(x, 0.0), 0.0), &obs);
+    ASSERT_EQ(obs.crops.size(), 1u);
+    const double centre = 0.25 * (obs.crops[0].At(1, 1) + obs.crops[0].At(1, 2) +
+                                  obs.crops[0].At(2, 1) + obs.crops[0].At(2, 2));
+    if (!(centre == last)) rebuilt.push_back(k);
+    last = centre;
+    const int made_at = rebuilt.back();
+    EXPECT_NEAR(centre, 0.2 * (-20.0 + 0.02 * made_at), 1e-9) << "step " << k;
+  }
+  EXPECT_EQ(rebuilt, (std::vector<int>{0, 20, 40, 60, 80, 100}));
+  // Another Observation object has no crops yet: it gets them now, of the current pose.
+  controllers::Observation fresh;
+  b.Build(101 * 0.005, StateAt(Vec2(-20.0 + 0.02 * 101, 0.0), 0.0), &fresh);
+  ASSERT_EQ(fresh.crops.size(), 1u);
+  EXPECT_NEAR(fresh.crops[0].At(1, 1), 0.2 * (-20.0 + 0.02 * 101 + 0.5), 1e-9);
+  // The default period (0) rebuilds with every observation.
+  config.crop_period_s = 0.0;
+  b.SetConfig(config);
+  b.Build(102 * 0.005, StateAt(Vec2(-20.0 + 0.02 * 102, 0.0), 0.0), &obs);
+  EXPECT_NEAR(obs.crops[0].At(1, 1), 0.2 * (-20.0 + 0.02 * 102 + 0.5), 1e-9);
+}
+
 TEST(ObservationBuilderTest, WithoutAPlanningGridTheGoalIsTheLocalGoal) {
   const terrain::TaskSpec task = test::PlaneTask(64.0);
   const terrain::GroundTruthMaps maps(task, 0);

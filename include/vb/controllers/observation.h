@@ -32,6 +32,11 @@ struct ObservationConfig {
   double lookahead_m = 10.0;          // multiplied by the environment scale
   double replan_period_s = 0.1;
   std::vector<CropSpec> crops;        // built in this order into Observation::crops
+  // The crops are rebuilt every crop_period_s of observation time (0: every observation, the
+  // default); in between, Observation::crops keeps the last ones. A system that reads its maps
+  // only every decision period sets it to that period (the learned systems, 0.1 s) and saves a
+  // crop per control step. Rebuilds fall on the same instants as the replans (t = 0, period, ...).
+  double crop_period_s = 0.0;
 };
 
 // Per wheel (axle-major: axle 0 left, axle 0 right, axle 1 left, ...).

@@ -46,6 +46,7 @@ void ObservationBuilder::Reset(const Vec2& goal_m, uint64_t trial_seed,
   nav_.path_m.clear();
   nav_.local_goal_index = 0;
   nav_.last_replan_s = -1e9;
+  nav_.last_crop_s = -1e9;
   nav_.replan_count = 0;
 }
 
@@ -123,7 +124,15 @@ void ObservationBuilder::Build(long k, double t_now_s, const vehicles::VehicleSt
   obs->heading_error_rad = WrapAngle(std::atan2(to_goal.y(), to_goal.x()) - yaw_rad);
   obs->global_path_m = &nav_.path_m;
 
-  // Maps: registered at the estimated pose (of the mapping delay ago, with perception).
+  // Maps: registered at the estimated pose (of the mapping delay ago, with perception), every
+  // crop period; an Observation without crops of the configured sizes is always given fresh ones.
+  bool crops_current = obs->crops.size() == config_.crops.size() &&
+                       t_s - nav_.last_crop_s < config_.crop_period_s - kReplanTimeTolerance_s;
+  for (size_t i = 0; crops_current && i < config_.crops.size(); ++i) {
+    crops_current = obs->crops[i].rows == config_.crops[i].size_cells;
+  }
+  if (crops_current) return;
+  nav_.last_crop_s = t_s;
   obs->crops.resize(config_.crops.size());
   Vec2 crop_position_m = position_m;
   double crop_yaw_rad = yaw_rad;

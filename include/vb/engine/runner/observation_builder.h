@@ -21,6 +21,7 @@ struct NavigationState {
   std::vector<Vec2> path_m;
   size_t local_goal_index = 0;
   double last_replan_s = -1e9;
+  double last_crop_s = -1e9;   // observation time of the crops in the last Observation built
   int replan_count = 0;   // planner calls since Reset (successful or not)
 };
 
