@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "vb/engine/error.h"
+#include "vb/soil/pow_lower_bound.h"
 
 namespace vb::soil {
 
@@ -34,6 +35,11 @@ constexpr double kErosionSettled_m = 1e-5;
 // Smallest cosine between the wheel-surface normal and the vertical used to turn a grid cell's
 // horizontal area into the wheel-surface area above it (78 degrees: the deepest snow rut).
 constexpr double kMinCos = 0.2;
+// Slack (m) of the belt scan's quick rejects against the rounding of an interpolated belt
+// height (~1e-13 m): a reject needs the belt this much above the bound.
+constexpr double kScanMargin_m = 1e-7;
+// The 4-neighbour offsets, in the order every pass visits them.
+constexpr int kDi[4] = {1, -1, 0, 0}, kDj[4] = {0, 0, 1, -1};
 
 struct Node {
   double base_m = 0.0;        // initial terrain level
@@ -45,13 +51,27 @@ struct Node {
   int32_t contact_step = -2;  // last step with wheel contact
   int32_t mark_step = -2;     // scratch stamp (rim membership in EndStep)
   int32_t queue_stamp = -1;   // scratch stamp (erosion work list membership)
+  int32_t tile = -1;          // allocation index of the node's tile (in the struct's padding)
 };
+
+static_assert(sizeof(Node) == 72, "the tile index lives in Node's padding");
 
 struct Tile {
   Node nodes[kTileSize * kTileSize];
+  // Per tile row: an upper bound on the level of its deformable nodes (the highest level0 any
+  // of them has had; levels only sink below level0: a plastic sinkage is never negative but by
+  // rounding, ~1e-17 m, far inside kScanMargin_m). -1e300: no deformable node in the row.
+  double row_top_m[kTileSize];
 };
 
 double Level(const Node& n) { return n.level0_m - n.plastic_m / n.cos_slope; }
+
+// z >= Level(n), without the division when z is at or above the undisturbed level (the level is
+// never above level0 while the plastic sinkage is >= 0; the sign test keeps it exact).
+bool AboveLevel(const Node& n, double z) {
+  if (z >= n.level0_m && n.plastic_m >= 0.0) return true;
+  return z >= Level(n);
+}
 
 // Lowest point of the wheel cylinder (centre c, unit axis a, radius r, half width hw) on the
 // vertical line through (x, y); false if the line misses the tread. `lat` is the position
@@ -105,12 +125,23 @@ struct ScmSoil::Impl {
   std::vector<std::unique_ptr<Tile>> tiles;  // in allocation order
   std::array<SoilParams, 3> soils;
   std::array<double, 3> tan_friction{};  // tan of each soil's friction angle (per node otherwise)
+  std::array<PowLowerBound, 3> pow_bound;  // z^bekker_n from below, per soil
+  // The Bekker yield test: sigma > kb z^n with soil `slot`'s exponent n; on yield *p_bekker is
+  // kb * std::pow(z, n). Skips pow where the table bound already shows sigma below it.
+  bool Yields(size_t slot, double kb, double z, double sigma, double* p_bekker) const {
+    if (kb >= 0.0 && sigma <= kb * pow_bound[slot](z)) return false;
+    *p_bekker = kb * std::pow(z, soils[slot].bekker_n);
+    return sigma > *p_bekker;
+  }
   int32_t step = 0;
   ScmStats stats;
   double max_raise_m = 0.0;   // highest level0 - base of any node so far (scan bound)
   void Raise(Node* n, double dh) {
     n->level0_m += dh;
     max_raise_m = std::max(max_raise_m, n->level0_m - n->base_m);
+    Tile& t = *tiles[static_cast<size_t>(n->tile)];
+    double& top = t.row_top_m[(n - t.nodes) >> kTileBits];
+    top = std::max(top, n->level0_m);
   }
 
   // This step's contacts, wheel by wheel (ranges into `contacts`).
@@ -141,6 +172,8 @@ struct ScmSoil::Impl {
   // the rim they started at; `pending` carries nodes still changing at the end of a step over.
   struct Work {
     int i, j, ring;
+    Node* node;   // the node at (i, j): valid within a step only (rim, active, next); pending
+                  // (carried over a step and a Restore) is looked up again
   };
   std::vector<Work> rim, active, next, pending;
   int32_t queue_stamp = 0;
@@ -160,37 +193,32 @@ struct ScmSoil::Impl {
     return &tiles[static_cast<size_t>(idx)]->nodes[(lj & kTileMask) * kTileSize + (li & kTileMask)];
   }
 
-  // The 4-neighbour e (+i, -i, +j, -j) of node n at (i, j): inside n's tile by pointer offset
-  // (the hot path of the rim and erosion passes), else through At. Same node as At(ni, nj, ...).
-  Node* Neighbour(Node* n, int i, int j, int e, bool allocate) {
+  // The 4-neighbours of node n at (i, j) in the order +i, -i, +j, -j (kDi, kDj), the same
+  // nodes as At(i + kDi[e], j + kDj[e], allocate) and looked up (allocated) in that order: inside
+  // n's tile by pointer offset (the hot path of the rim and erosion passes), else through At.
+  void Neighbours(Node* n, int i, int j, bool allocate, Node* nb[4]) {
     const int li = (i - i_min) & kTileMask, lj = (j - j_min) & kTileMask;
-    switch (e) {
-      case 0:
-        if (li != kTileMask && i < i_max) return n + 1;
-        return At(i + 1, j, allocate);
-      case 1:
-        if (li != 0) return n - 1;
-        return At(i - 1, j, allocate);
-      case 2:
-        if (lj != kTileMask && j < j_max) return n + kTileSize;
-        return At(i, j + 1, allocate);
-      default:
-        if (lj != 0) return n - kTileSize;
-        return At(i, j - 1, allocate);
-    }
+    nb[0] = li != kTileMask && i < i_max ? n + 1 : At(i + 1, j, allocate);
+    nb[1] = li != 0 ? n - 1 : At(i - 1, j, allocate);
+    nb[2] = lj != kTileMask && j < j_max ? n + kTileSize : At(i, j + 1, allocate);
+    nb[3] = lj != 0 ? n - kTileSize : At(i, j - 1, allocate);
   }
 
   int32_t Allocate(int tx, int ty) {
     auto tile = std::make_unique<Tile>();
+    const auto id = static_cast<int32_t>(tiles.size());
     for (int b = 0; b < kTileSize; ++b) {
+      tile->row_top_m[b] = -1e300;
       for (int a = 0; a < kTileSize; ++a) {
         Node& n = tile->nodes[b * kTileSize + a];
+        n.tile = id;
         const int i = i_min + tx * kTileSize + a, j = j_min + ty * kTileSize + b;
         if (i > i_max || j > j_max) continue;  // beyond the world edge: stays rigid
         const terrain::SurfacePoint sp = terrain.Query(i * dx, j * dx);
         n.base_m = n.level0_m = sp.height_m;
         n.cos_slope = static_cast<float>(std::max(0.05, sp.normal_W.z()));
         n.slot = static_cast<int8_t>(SoilSlot(sp.surface));
+        if (n.slot >= 0) tile->row_top_m[b] = std::max(tile->row_top_m[b], n.level0_m);
       }
     }
     tiles.push_back(std::move(tile));
@@ -232,6 +260,7 @@ ScmSoil::ScmSoil(const terrain::Terrain& terrain, const SoilConfig& config)
       m.soils[k].elastic_stiffness_papm =
           std::max(m.soils[k].elastic_stiffness_papm, m.soils[k].bekker_kphi);
       m.tan_friction[k] = std::tan(m.soils[k].friction_angle_rad);
+      m.pow_bound[k].Init(m.soils[k].bekker_n);
     }
   }
   m.dx = config_.grid_spacing_m;
@@ -290,25 +319,57 @@ WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
   const int j_hi = static_cast<int>(std::floor((c.y() + ey) / m.dx));
 
   // (1) Geometry: the lowest point of the cylinder above each node, kept if below the soil.
+  const double hw_ext = half_w + 0.5 * m.dx;
+  const double lat_reach = hw_ext + std::abs(a.z()) * std::sqrt(r * r + hw_ext * hw_ext) + 1e-6;
   m.hits.clear();
   for (int j = j_lo; j <= j_hi; ++j) {
-    for (int i = i_lo; i <= i_hi; ++i) {
-      double hit_z = 0.0, lat = 0.0;
-      // Nodes whose cell (+-dx/2 across) overlaps the tread are pressed, each carrying the share
-      // of its cell the tread covers, so the effective width is the wheel's (sum of covers x dx
-      // = width) wherever the wheel stands between grid columns. A node just beyond the tread
-      // edge takes the cylinder's height there (the tread edge, extended by < dx/2).
-      if (!WheelBottomAt(c, a, r, half_w + 0.5 * m.dx, i * m.dx, j * m.dx, &hit_z, &lat)) {
-        continue;
+    // The row tile by tile: one look-up per tile (the first node in it under the tread, as the
+    // node-by-node look-up allocated it), the others by pointer offset.
+    // Only the row's nodes within the tread's lateral reach: a point of the cylinder with
+    // |lat| <= hw_ext is within sqrt(r^2 + hw_ext^2) of the centre, so its horizontal axial
+    // offset ua = lat - t a_z is at most lat_reach (plus 1e-6 m and a node each side for
+    // rounding): the nodes left out are ones WheelBottomAt rejects.
+    int row_lo = i_lo, row_hi = i_hi;
+    if (std::abs(a.x()) > 1e-6) {
+      const double uy = j * m.dx - c.y();
+      double x0 = c.x() + (-lat_reach - uy * a.y()) / a.x();
+      double x1 = c.x() + (lat_reach - uy * a.y()) / a.x();
+      if (x0 > x1) std::swap(x0, x1);
+      row_lo = std::max(row_lo, static_cast<int>(std::floor(x0 / m.dx)) - 1);
+      row_hi = std::min(row_hi, static_cast<int>(std::ceil(x1 / m.dx)) + 1);
+    }
+    int i = row_lo;
+    while (i <= row_hi) {
+      const int chunk_end =
+          std::min(row_hi, m.i_min + (((i - m.i_min) >> kTileBits) + 1) * kTileSize - 1);
+      Node* base = nullptr;
+      int base_i = 0;
+      bool looked_up = false;
+      for (; i <= chunk_end; ++i) {
+        double hit_z = 0.0, lat = 0.0;
+        // Nodes whose cell (+-dx/2 across) overlaps the tread are pressed, each carrying the
+        // share of its cell the tread covers, so the effective width is the wheel's (sum of
+        // covers x dx = width) wherever the wheel stands between grid columns. A node just
+        // beyond the tread edge takes the cylinder's height there (the tread edge, extended by
+        // < dx/2).
+        if (!WheelBottomAt(c, a, r, hw_ext, i * m.dx, j * m.dx, &hit_z, &lat)) {
+          continue;
+        }
+        const double cover = std::min(1.0, (half_w - std::abs(lat)) / m.dx + 0.5);
+        if (!(cover > 0.0)) continue;
+        if (!looked_up) {
+          base = m.At(i, j, true);
+          base_i = i;
+          looked_up = true;
+        }
+        if (base == nullptr) continue;   // outside the world
+        Node* n = base + (i - base_i);   // beyond i_max: a rigid node (slot -1), skipped
+        if (n->slot < 0) continue;
+        if (AboveLevel(*n, hit_z)) continue;
+        const double ux = i * m.dx - c.x(), uy = j * m.dx - c.y();
+        m.hits.push_back(
+            {n, i, j, Vec3(i * m.dx, j * m.dx, hit_z), lat, ux * fwd.x() + uy * fwd.y(), cover});
       }
-      const double cover = std::min(1.0, (half_w - std::abs(lat)) / m.dx + 0.5);
-      if (!(cover > 0.0)) continue;
-      const double ux = i * m.dx - c.x(), uy = j * m.dx - c.y();
-      Node* n = m.At(i, j, true);
-      if (n == nullptr || n->slot < 0) continue;
-      if (hit_z >= Level(*n)) continue;
-      m.hits.push_back(
-          {n, i, j, Vec3(i * m.dx, j * m.dx, hit_z), lat, ux * fwd.x() + uy * fwd.y(), cover});
     }
   }
   if (m.hits.empty()) return out;
@@ -348,9 +409,10 @@ WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
     const double z = ca * (n.level0_m - h.p.z());  // sinkage along the terrain normal
     const double ke = s.elastic_stiffness_papm * k_scale;
     double sigma = ke * (z - n.plastic_m);  // elastic trial
-    const double p_bekker = (s.bekker_kc / b + s.bekker_kphi) * std::pow(z, s.bekker_n);
+    double p_bekker = 0.0;
     double flow = 0.0;
-    if (sigma > p_bekker) {  // yield: plastic sinkage follows
+    if (m.Yields(static_cast<size_t>(n.slot), s.bekker_kc / b + s.bekker_kphi, z, sigma,
+                 &p_bekker)) {  // yield: plastic sinkage follows
       sigma = p_bekker;
       const double plastic = z - p_bekker / ke;
       flow = (plastic - n.plastic_m) / ca;
@@ -432,7 +494,7 @@ void ScmSoil::Impl::DepositOnRim(const Patch& patch, size_t begin, double volume
                                         t >= 0.0 && t <= 1.0
                                   : WheelBottomAt(patch.center, patch.axis, patch.radius,
                                                   patch.half_width, w.i * dx, w.j * dx, &z, &lat);
-    if (under) room[k] = std::max(0.0, z - Level(*At(w.i, w.j, false)));
+    if (under) room[k] = std::max(0.0, z - Level(*w.node));
   }
   double remaining = volume;
   size_t open = n;
@@ -443,7 +505,7 @@ void ScmSoil::Impl::DepositOnRim(const Patch& patch, size_t begin, double volume
     bool capped = false;
     for (size_t k = 0; k < n; ++k) {
       if (full[k] || room[k] >= share) continue;
-      Raise(At(rim[begin + k].i, rim[begin + k].j, false), room[k]);
+      Raise(rim[begin + k].node, room[k]);
       remaining -= room[k];
       full[k] = true;
       --open;
@@ -452,13 +514,13 @@ void ScmSoil::Impl::DepositOnRim(const Patch& patch, size_t begin, double volume
     if (capped) continue;
     for (size_t k = 0; k < n; ++k) {
       if (full[k]) continue;
-      Raise(At(rim[begin + k].i, rim[begin + k].j, false), share);
+      Raise(rim[begin + k].node, share);
     }
     remaining = 0.0;
   }
   if (remaining > 0.0) {  // all rim nodes under the tread and full: raise them anyway
     const double share = remaining / static_cast<double>(n);
-    for (size_t k = 0; k < n; ++k) Raise(At(rim[begin + k].i, rim[begin + k].j, false), share);
+    for (size_t k = 0; k < n; ++k) Raise(rim[begin + k].node, share);
   }
 }
 
@@ -551,9 +613,9 @@ TrackSoilOutput ScmSoil::TrackContact(const TrackSoilInput& tr, double dt) {
       while (i <= i1) {
         const int chunk_end =
             std::min(i1, m.i_min + (((i - m.i_min) >> kTileBits) + 1) * kTileSize - 1);
+        // The first node in this tile that the belt covers: the one tile look-up (which
+        // allocates the tile), the other nodes by pointer offset.
         Node* base = nullptr;
-        int base_i = 0;
-        bool looked_up = false;
         for (; i <= chunk_end; ++i) {
           const double ux = i * dx - ax;
           const double t = t_row + ux * sx / len2;
@@ -561,16 +623,44 @@ TrackSoilOutput ScmSoil::TrackContact(const TrackSoilInput& tr, double dt) {
           if (std::abs(l) > hw_scan || t < 0.0 || t > t_end) continue;
           const double cover = std::min(1.0, (half_w - std::abs(l)) / dx + 0.5);
           if (!(cover > 0.0)) continue;
-          if (!looked_up) {
-            base = m.At(i, j, true);
-            base_i = i;
-            looked_up = true;
-          }
-          if (base == nullptr) continue;   // outside the world
+          base = m.At(i, j, true);
+          break;
+        }
+        if (i > chunk_end) continue;   // the belt covers no node of this chunk
+        const int base_i = i;
+        if (base == nullptr) {         // outside the world
+          i = chunk_end + 1;
+          continue;
+        }
+        // Quick rejects, exact (no node they skip could be a contact): the belt height is
+        // linear along the row, so its lowest node over the chunk is an end; above the tile
+        // row's soil top the whole chunk is skipped, and a node with the belt above its
+        // undisturbed level (never below its level) without the full test. kScanMargin_m
+        // covers the rounding of the interpolated height against the per-node evaluation.
+        const double ux0 = base_i * dx - ax, ux1 = chunk_end * dx - ax;
+        const double z0 = az + (t_row + ux0 * sx / len2) * dz + (l_row + ux0 * lx) * tilt;
+        const double z1 = az + (t_row + ux1 * sx / len2) * dz + (l_row + ux1 * lx) * tilt;
+        const Tile& tile = *m.tiles[static_cast<size_t>(base->tile)];
+        if (std::min(z0, z1) - kScanMargin_m >= tile.row_top_m[(base - tile.nodes) >> kTileBits]) {
+          i = chunk_end + 1;
+          continue;
+        }
+        const double z_step = chunk_end > base_i ? (z1 - z0) / (chunk_end - base_i) : 0.0;
+        for (; i <= chunk_end; ++i) {
           Node* node = base + (i - base_i);  // beyond i_max: a rigid node (slot -1), skipped
           if (node->slot < 0) continue;
+          if (node->plastic_m >= 0.0 &&
+              z0 + (i - base_i) * z_step - kScanMargin_m >= node->level0_m) {
+            continue;
+          }
+          const double ux = i * dx - ax;
+          const double t = t_row + ux * sx / len2;
+          const double l = l_row + ux * lx;
+          if (std::abs(l) > hw_scan || t < 0.0 || t > t_end) continue;
+          const double cover = std::min(1.0, (half_w - std::abs(l)) / dx + 0.5);
+          if (!(cover > 0.0)) continue;
           const double hit_z = az + t * dz + l * tilt;
-          if (hit_z >= Level(*node)) continue;
+          if (AboveLevel(*node, hit_z)) continue;
           m.hits.push_back({node, i, j, Vec3(i * dx, j * dx, hit_z), l, t, cover});
         }
       }
@@ -599,9 +689,10 @@ TrackSoilOutput ScmSoil::TrackContact(const TrackSoilInput& tr, double dt) {
       const double z = ca * (nd.level0_m - h.p.z());
       const double ke = sp.elastic_stiffness_papm * k_scale;
       double sigma = ke * (z - nd.plastic_m);
-      const double p_bekker = (sp.bekker_kc / bb + sp.bekker_kphi) * std::pow(z, sp.bekker_n);
+      double p_bekker = 0.0;
       double flow = 0.0;
-      if (sigma > p_bekker) {
+      if (m.Yields(static_cast<size_t>(nd.slot), sp.bekker_kc / bb + sp.bekker_kphi, z, sigma,
+                   &p_bekker)) {
         sigma = p_bekker;
         const double plastic = z - p_bekker / ke;
         flow = (plastic - nd.plastic_m) / ca;
@@ -659,15 +750,16 @@ void ScmSoil::EndStep(double /*dt*/) {
       for (size_t k = patch.begin; k < patch.end; ++k) {
         const Impl::Contact& ct = m.contacts[k];
         volume += ct.flow_m;
-        const int di[4] = {1, -1, 0, 0}, dj[4] = {0, 0, 1, -1};
+        Node* nbs[4];
+        m.Neighbours(ct.node, ct.i, ct.j, true, nbs);
         for (int e = 0; e < 4; ++e) {
-          Node* nb = m.Neighbour(ct.node, ct.i, ct.j, e, true);
+          Node* nb = nbs[e];
           if (nb == nullptr || nb->slot < 0 || nb->contact_step == m.step ||
               nb->mark_step == m.step) {
             continue;
           }
           nb->mark_step = m.step;
-          m.rim.push_back({ct.i + di[e], ct.j + dj[e], 0});
+          m.rim.push_back({ct.i + kDi[e], ct.j + kDj[e], 0, nb});
         }
       }
       if (volume > 0.0) m.DepositOnRim(patch, rim_begin, bp.flow_factor * volume);
@@ -689,34 +781,36 @@ void ScmSoil::EndStep(double /*dt*/) {
 // it started. Same domain bound and settings, but only nodes that can change are visited.
 void ScmSoil::Impl::Erode(const BulldozingParams& bp) {
   const double threshold = dx * std::tan(bp.erosion_angle_rad);
-  const int di[4] = {1, -1, 0, 0}, dj[4] = {0, 0, 1, -1};
   active.clear();
   auto enqueue = [&](std::vector<Work>* list, Node* n, int i, int j, int ring) {
     if (n->queue_stamp == queue_stamp) return;
     n->queue_stamp = queue_stamp;
-    list->push_back({i, j, ring});
+    list->push_back({i, j, ring, n});
   };
   ++queue_stamp;
-  for (const std::vector<Work>* src : {&rim, &pending}) {
-    for (const Work& w : *src) {
-      Node* n = At(w.i, w.j, false);
-      if (n != nullptr) enqueue(&active, n, w.i, w.j, w.ring);
-    }
+  for (const Work& w : rim) enqueue(&active, w.node, w.i, w.j, w.ring);
+  for (const Work& w : pending) {
+    Node* n = At(w.i, w.j, false);
+    if (n != nullptr) enqueue(&active, n, w.i, w.j, w.ring);
   }
   pending.clear();
   for (int pass = 0; pass < bp.erosion_iterations && !active.empty(); ++pass) {
     ++queue_stamp;
     next.clear();
     for (const Work& w : active) {
-      Node* n = At(w.i, w.j, false);
+      Node* n = w.node;
       ++stats.eroded_node_visits;
       if (n->slot < 0 || n->contact_step == step) continue;
       double level_n = Level(*n);
+      // one look-up for the neighbour's level and, if it moves, the node itself (its tile is
+      // allocated only then: most neighbours are within the threshold). The four neighbours lie
+      // in four different tiles when outside n's, so allocating one leaves the others' nullptr
+      // true.
+      Node* nbs[4];
+      Neighbours(n, w.i, w.j, false, nbs);
       for (int e = 0; e < 4; ++e) {
-        const int ni = w.i + di[e], nj = w.j + dj[e];
-        // one look-up for the neighbour's level and, if it moves, the node itself (its tile is
-        // allocated only then: most neighbours are within the threshold)
-        Node* nb = Neighbour(n, w.i, w.j, e, false);
+        const int ni = w.i + kDi[e], nj = w.j + kDj[e];
+        Node* nb = nbs[e];
         const double dy =
             level_n - (nb != nullptr ? Level(*nb) : terrain.Height(ni * dx, nj * dx));
         if (std::abs(dy) <= threshold) continue;
