@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 #include <string>
 #include <vector>
 
+#include "io/data_dir.h"
 #include "io/yaml_strict.h"
 #include "vb/engine/convex_shape.h"
 #include "vb/engine/error.h"
@@ -795,18 +795,8 @@ vehicles::VehicleParams LoadVehicle(const std::string& path) {
 }
 
 std::vector<std::string> VehicleNames(const std::string& data_dir) {
-  namespace fs = std::filesystem;
   // A missing directory simply has no vehicles; callers report "unknown vehicle" with the list.
-  std::vector<std::string> names;
-  std::error_code ec;
-  for (fs::directory_iterator it(fs::path(data_dir) / "vehicles", ec), end; !ec && it != end;
-       it.increment(ec)) {
-    if (it->path().extension() == ".yaml" && it->is_regular_file(ec)) {
-      names.push_back(it->path().stem().string());
-    }
-  }
-  std::sort(names.begin(), names.end());
-  return names;
+  return YamlNamesIn(data_dir + "/vehicles");
 }
 
 }  // namespace vb::io
