@@ -282,11 +282,19 @@ WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
   WheelSoilOutput out;
   const Vec3& c = wheel.center_W;
   const terrain::SurfacePoint under = m.terrain.Query(c.x(), c.y());
-  if (!terrain::IsDeformable(under.surface)) return out;  // rigid ground: the vehicle's tire
-  out.on_soil = true;
-  out.surface = under.surface;
   const double r = wheel.radius_m, half_w = 0.5 * wheel.width_m;
   const Vec3 a = wheel.axis_W.normalized();
+  const bool centre_on_soil = terrain::IsDeformable(under.surface);
+  // A wheel whose centre is over rigid ground may still have part of its tread over a soil patch
+  // (a seam): the soil answers for its own nodes wherever the centre is, the vehicle's rigid tire
+  // for the rigid patches (tire_contact.h, GroundScope::kRigidOnly).
+  if (!centre_on_soil &&
+      m.terrain.MixAround(c.x(), c.y(), r + half_w + 0.5 * m.dx + r * std::abs(a.z())) ==
+          terrain::GroundMix::kRigid) {
+    return out;  // rigid ground only: the vehicle's tire
+  }
+  out.on_soil = true;
+  out.surface = under.surface;
   Vec3 fwd = a.cross(Vec3::UnitZ());
   if (fwd.norm() < 0.1) return out;  // wheel lying on its side: no rolling contact model
   fwd.normalize();
@@ -448,7 +456,11 @@ WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
     force += f;
     torque += w.cross(f);
     n.contact_step = m.step;
-    sinkage = std::max(sinkage, ca * (n.base_m - h.p.z()));
+    const double node_sinkage = ca * (n.base_m - h.p.z());
+    if (!centre_on_soil && (m.contacts.size() == begin || node_sinkage > sinkage)) {
+      out.surface = m.terrain.SurfaceAt(h.p.x(), h.p.y());  // the soil's class, not the centre's
+    }
+    sinkage = std::max(sinkage, node_sinkage);
     m.contacts.push_back({h.i, h.j, flow, h.node});
   }
   m.patches.push_back({begin, m.contacts.size(), c, a, r, half_w});

@@ -123,6 +123,31 @@ void Terrain::PatchIndex(double x_m, double y_m, int* row, int* col) const {
   *row = std::min(std::max(i, 0), patches_.rows - 1);
 }
 
+SurfaceClass Terrain::SurfaceAt(double x_m, double y_m) const {
+  if (patches_.rows <= 0 || patches_.cols <= 0) return SurfacePoint().surface;
+  int i, j;
+  PatchIndex(x_m, y_m, &i, &j);
+  return patches_.classes[static_cast<size_t>(i) * patches_.cols + j];
+}
+
+GroundMix Terrain::MixAround(double x_m, double y_m, double half_m) const {
+  if (patches_.rows <= 0 || patches_.cols <= 0) {
+    return IsDeformable(SurfacePoint().surface) ? GroundMix::kDeformable : GroundMix::kRigid;
+  }
+  int i0, j0, i1, j1;
+  PatchIndex(x_m - half_m, y_m + half_m, &i0, &j0);  // north-west corner: smallest row and col
+  PatchIndex(x_m + half_m, y_m - half_m, &i1, &j1);
+  bool rigid = false, deformable = false;
+  for (int i = i0; i <= i1; ++i) {
+    for (int j = j0; j <= j1; ++j) {
+      (IsDeformable(patches_.classes[static_cast<size_t>(i) * patches_.cols + j]) ? deformable
+                                                                                   : rigid) = true;
+    }
+  }
+  if (rigid && deformable) return GroundMix::kMixed;
+  return deformable ? GroundMix::kDeformable : GroundMix::kRigid;
+}
+
 SurfacePoint Terrain::Query(double x_m, double y_m) const {
   SurfacePoint out;
   double dh_du, dh_dv;

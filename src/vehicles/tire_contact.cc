@@ -24,16 +24,23 @@ constexpr double kMinCosTilt = 0.05;
 
 // Positions a (ascending, from -r to r) along q0 + a fwd where the terrain section has a vertex:
 // the ends and every crossing of a grid line (u or v integral) or a cell diagonal (u + v
-// integral; grid coordinates as in Terrain). Returns their count.
+// integral; grid coordinates as in Terrain); with `seams`, also every crossing of a patch
+// boundary (where the material, and so soil or rigid, may change). Returns their count.
 int SectionVertices(const terrain::Terrain& terrain, const Vec3& q0, const Vec3& fwd, double r,
-                    std::array<double, kMaxSamples>* a) {
+                    bool seams, std::array<double, kMaxSamples>* a) {
   const double inv_dx = 1.0 / terrain.spacing_x_m(), inv_dy = 1.0 / terrain.spacing_y_m();
   const double u0 = (q0.x() + 0.5 * terrain.size_x_m()) * inv_dx, du = fwd.x() * inv_dx;
   const double v0 = (0.5 * terrain.size_y_m() - q0.y()) * inv_dy, dv = -fwd.y() * inv_dy;
-  const double w0[3] = {u0, v0, u0 + v0}, dw[3] = {du, dv, du + dv};
+  // patch grid coordinates (as Terrain::PatchIndex)
+  const double pu_scale = terrain.patches().cols / terrain.size_x_m();
+  const double pv_scale = terrain.patches().rows / terrain.size_y_m();
+  const double w0[5] = {u0, v0, u0 + v0, (q0.x() + 0.5 * terrain.size_x_m()) * pu_scale,
+                        (0.5 * terrain.size_y_m() - q0.y()) * pv_scale};
+  const double dw[5] = {du, dv, du + dv, fwd.x() * pu_scale, -fwd.y() * pv_scale};
+  const int families = seams ? 5 : 3;
   int count = 0;
   (*a)[count++] = -r;
-  for (int f = 0; f < 3; ++f) {
+  for (int f = 0; f < families; ++f) {
     if (std::abs(dw[f]) * r < 1e-9) continue;
     const double lo = w0[f] - r * std::abs(dw[f]), hi = w0[f] + r * std::abs(dw[f]);
     const double first = std::floor(lo) + 1.0, last = std::ceil(hi) - 1.0;
@@ -71,7 +78,9 @@ int SectionVertices(const terrain::Terrain& terrain, const Vec3& q0, const Vec3&
 // guarantees of one bristle per wheel are kept. On even ground there is one face contact per
 // slice and the resultant is the line load on the lowest generatrix.
 ContactGeometry FindWheelContact(const terrain::Terrain& terrain, const Vec3& c_W,
-                                 const Vec3& axis_W, double radius_m, double width_m) {
+                                 const Vec3& axis_W, double radius_m, double width_m,
+                                 GroundScope scope) {
+  const bool rigid_only = scope == GroundScope::kRigidOnly;
   ContactGeometry out;
   Vec3 fwd = axis_W.cross(Vec3::UnitZ());  // rolling direction, horizontal
   const double fwd_len = fwd.norm();
@@ -83,6 +92,8 @@ ContactGeometry FindWheelContact(const terrain::Terrain& terrain, const Vec3& c_
   const double r = radius_m;
   std::array<double, kMaxSamples> a, b;  // section in the wheel plane: along fwd, depth along down
   std::array<Vec3, kMaxSamples> p3;      // the same points on the terrain, world frame
+  std::array<bool, kMaxSamples> rigid;   // segment j (points j, j + 1) is rigid ground
+  rigid.fill(true);
   Vec3 force = Vec3::Zero(), moment_point = Vec3::Zero();
   double weight_sum = 0.0, friction_sum = 0.0, deepest = 0.0;
   const double half_w = 0.5 * width_m;
@@ -91,7 +102,7 @@ ContactGeometry FindWheelContact(const terrain::Terrain& terrain, const Vec3& c_
   const Vec3 lateral_shift(r * down_w.x(), r * down_w.y(), 0.0);
   for (int k = 0; k < kSlices; ++k) {
     const Vec3 cs = c_W + (-half_w + width_m * k / (kSlices - 1)) * axis_W;
-    const int n = SectionVertices(terrain, cs + lateral_shift, fwd, r, &a);
+    const int n = SectionVertices(terrain, cs + lateral_shift, fwd, r, rigid_only, &a);
     double b_min = 1e300;
     for (int j = 0; j < n; ++j) {
       const Vec3 q = cs + a[j] * fwd + lateral_shift;
@@ -101,13 +112,24 @@ ContactGeometry FindWheelContact(const terrain::Terrain& terrain, const Vec3& c_
       b_min = std::min(b_min, b[j]);
     }
     if (b_min >= r) continue;  // the whole section below the circle: no segment reaches it
+    bool any_rigid = true;
+    if (rigid_only) {  // each segment's material at its midpoint (no seam inside a segment)
+      any_rigid = false;
+      for (int j = 0; j + 1 < n; ++j) {
+        const Vec3 mid = 0.5 * (p3[j] + p3[j + 1]);
+        rigid[j] = !terrain::IsDeformable(terrain.SurfaceAt(mid.x(), mid.y()));
+        any_rigid = any_rigid || rigid[j];
+      }
+    }
+    if (!any_rigid) continue;  // all soil: the soil model carries this slice
     const double w_k = kSliceWeight[k];
-    auto add = [&](double qa, double qb, const Vec3& terrain_point, bool face) {
+    // material_point: where the feature's material is read (a point of the rigid side at a seam)
+    auto add = [&](double qa, double qb, const Vec3& material_point, bool face) {
       const double d = std::sqrt(qa * qa + qb * qb);
       if (d >= r || d < 1e-9) return;
       // in-plane normal: from the terrain feature towards the slice centre
       const Vec3 n2 = -(qa * fwd + qb * down_w) / d;
-      const terrain::SurfacePoint s = terrain.Query(terrain_point.x(), terrain_point.y());
+      const terrain::SurfacePoint s = terrain.Query(material_point.x(), material_point.y());
       Vec3 nrm = n2;
       double pen = r - d;
       if (face) {  // a face: the triangle's own normal (its side slope included)
@@ -129,16 +151,34 @@ ContactGeometry FindWheelContact(const terrain::Terrain& terrain, const Vec3& c_
     for (int j = 0; j + 1 < n; ++j) {
       if (std::min(b[j], b[j + 1]) >= r) continue;
       const double ea = a[j + 1] - a[j], eb = b[j + 1] - b[j];
-      const double t = -(a[j] * ea + b[j] * eb) / (ea * ea + eb * eb);
-      if (t > 0.0 && t < 1.0) {  // the perpendicular foot inside the segment: a face
-        add(a[j] + t * ea, b[j] + t * eb, p3[j] + t * (p3[j + 1] - p3[j]), true);
+      if (rigid[j]) {
+        const double t = -(a[j] * ea + b[j] * eb) / (ea * ea + eb * eb);
+        if (t > 0.0 && t < 1.0) {  // the perpendicular foot inside the segment: a face
+          add(a[j] + t * ea, b[j] + t * eb, p3[j] + t * (p3[j + 1] - p3[j]), true);
+        }
       }
-      // convex corner at vertex j + 1: closest point of both adjacent segments
-      if (j + 2 < n && b[j + 1] < r) {
-        const double fa = a[j + 2] - a[j + 1], fb = b[j + 2] - b[j + 1];
+      if (j + 2 >= n || b[j + 1] >= r || !(rigid[j] || rigid[j + 1])) continue;
+      const double fa = a[j + 2] - a[j + 1], fb = b[j + 2] - b[j + 1];
+      if (rigid[j] && rigid[j + 1]) {
+        // convex corner at vertex j + 1: closest point of both adjacent segments
         if (a[j + 1] * ea + b[j + 1] * eb <= 0.0 && a[j + 1] * fa + b[j + 1] * fb >= 0.0) {
           add(a[j + 1], b[j + 1], p3[j + 1], false);
         }
+        continue;
+      }
+      // A seam at vertex j + 1: the rigid surface ends in an edge with a vertical face below it,
+      // open towards the soil side (ahead if segment j is rigid). The edge is the closest point
+      // of the face when it is below the centre (b >= 0); then it is a convex corner if it is
+      // also the closest point of the rigid segment. Above the centre, the face itself is the
+      // contact, if the centre is on the soil side (a rut deeper than the wheel's radius).
+      const bool soil_ahead = rigid[j];
+      const Vec3 rigid_mid = soil_ahead ? 0.5 * (p3[j] + p3[j + 1]) : 0.5 * (p3[j + 1] + p3[j + 2]);
+      if (b[j + 1] >= 0.0) {
+        const bool edge_closest = soil_ahead ? a[j + 1] * ea + b[j + 1] * eb <= 0.0
+                                             : a[j + 1] * fa + b[j + 1] * fb >= 0.0;
+        if (edge_closest) add(a[j + 1], b[j + 1], rigid_mid, false);
+      } else if (soil_ahead ? a[j + 1] < 0.0 : a[j + 1] > 0.0) {
+        add(a[j + 1], 0.0, rigid_mid, false);
       }
     }
   }

@@ -107,6 +107,10 @@ constexpr double kBodyFriction = 0.8;
 constexpr int kMaxGroundContactsPerPiece = 8;
 constexpr int kMaxObstacleContactsPerPiece = 8;
 constexpr int kMaxObstacleContactsPerWheel = 4;
+// Margin (m) around a wheel's reach within which a soil/rigid seam makes it use both contact
+// models: more than half the soil grid's node cell (0.05 m at the coarsest, the original's 0.1 m
+// grid), so that the soil's edge nodes and the rigid tire's samples are all inside.
+constexpr double kSeamMargin_m = 0.1;
 
 }  // namespace
 
@@ -434,11 +438,25 @@ void Vehicle::Synchronize(double dt) {
     world_->AddJointForce(body_, c.wheel_link, in_->wheel_torques[i]);
     world_->SetJointVelocityMotor(body_, c.wheel_link, 0.0, inputs_.braking * axle.brake_torque_nm);
 
-    // wheel-ground contact: the soil first (if it claims this wheel), else the rigid tire
+    // wheel-ground contact: the soil for the deformable patches under the wheel, the rigid tire
+    // for the rigid ones; near a seam, both (each for its own side, tire_contact.h)
     const Pose wheel = world_->LinkPose(body_, c.wheel_link);
     const Vec3 axis_W = wheel.rotation * Vec3::UnitY();
     WheelState& ws = state_.wheels[i];
+    const bool tmeasy = params_.tire.model == TireModel::kTMeasy;
+    const double contact_radius_m = tmeasy ? params_.tire.unloaded_radius_m : wp.radius_m;
+    const double contact_width_m = tmeasy ? params_.tire.width_m : wp.width_m;
+    terrain::GroundMix mix = terrain::GroundMix::kRigid;
     if (soil_ != nullptr) {
+      // the wheel's reach: along its plane (radius), across it (half width, and the tilted
+      // wheel plane's sideways reach at its bottom), with a margin for the soil's node cells
+      const double reach_m = std::max(contact_radius_m, wp.radius_m) *
+                                 (1.0 + std::abs(axis_W.z())) +
+                             0.5 * std::max(contact_width_m, wp.width_m) + kSeamMargin_m;
+      mix = terrain_.MixAround(wheel.position.x(), wheel.position.y(), reach_m);
+    }
+    soil::WheelSoilOutput soil_out;
+    if (mix != terrain::GroundMix::kRigid) {
       soil::WheelSoilInput in;
       in.wheel_id = static_cast<int>(i);
       in.center_W = wheel.position;
@@ -449,24 +467,25 @@ void Vehicle::Synchronize(double dt) {
       in.width_m = wp.width_m;
       in.mass_kg = unsprung_kg;
       in.spin_inertia_kgm2 = wp.inertia_kgm2.y();
-      const soil::WheelSoilOutput out = soil_->WheelContact(in, dt);
-      if (out.on_soil) {
-        world_->ApplyLinkForce(body_, c.wheel_link, out.force_W, wheel.position);
-        world_->ApplyLinkTorque(body_, c.wheel_link, out.torque_W);
-        c.bristle = BristleState();
-        c.tmeasy = TmeasyState();
-        ws.in_contact = out.normal_force_n > 0.0;
-        ws.surface = out.surface;
-        ws.normal_force_n = out.normal_force_n;
-        ws.sinkage_m = out.sinkage_m;
-        continue;
+      soil_out = soil_->WheelContact(in, dt);
+      if (soil_out.on_soil) {
+        world_->ApplyLinkForce(body_, c.wheel_link, soil_out.force_W, wheel.position);
+        world_->ApplyLinkTorque(body_, c.wheel_link, soil_out.torque_W);
+        if (mix == terrain::GroundMix::kDeformable) {
+          c.bristle = BristleState();
+          c.tmeasy = TmeasyState();
+          ws.in_contact = soil_out.normal_force_n > 0.0;
+          ws.surface = soil_out.surface;
+          ws.normal_force_n = soil_out.normal_force_n;
+          ws.sinkage_m = soil_out.sinkage_m;
+          continue;
+        }
       }
     }
-    const bool tmeasy = params_.tire.model == TireModel::kTMeasy;
     const ContactGeometry geo =
-        tmeasy ? FindWheelContact(terrain_, wheel.position, axis_W, params_.tire.unloaded_radius_m,
-                                  params_.tire.width_m)
-               : FindWheelContact(terrain_, wheel.position, axis_W, wp.radius_m, wp.width_m);
+        FindWheelContact(terrain_, wheel.position, axis_W, contact_radius_m, contact_width_m,
+                         mix == terrain::GroundMix::kMixed ? GroundScope::kRigidOnly
+                                                           : GroundScope::kAll);
     Vec3 v_point = Vec3::Zero();
     if (geo.in_contact) v_point = world_->LinkPointVelocity(body_, c.wheel_link, geo.point_W);
     TireParams tire = params_.tire;
@@ -485,10 +504,15 @@ void Vehicle::Synchronize(double dt) {
     }
     if (geo.in_contact) world_->ApplyLinkForce(body_, c.wheel_link, f.force_W, geo.point_W);
 
-    ws.in_contact = geo.in_contact && f.normal_force_n > 0.0;
-    ws.surface = geo.surface;
-    ws.normal_force_n = f.normal_force_n;
-    ws.sinkage_m = 0.0;
+    const bool rigid_contact = geo.in_contact && f.normal_force_n > 0.0;
+    const bool soil_contact = soil_out.on_soil && soil_out.normal_force_n > 0.0;
+    // at a seam: the surface that carries more of the wheel, with the soil's sinkage only if
+    // that is the soil (a wheel reported on rigid ground has no sinkage)
+    const bool soil_carries_most = soil_contact && soil_out.normal_force_n >= f.normal_force_n;
+    ws.in_contact = rigid_contact || soil_contact;
+    ws.surface = soil_carries_most ? soil_out.surface : geo.surface;
+    ws.normal_force_n = f.normal_force_n + (soil_out.on_soil ? soil_out.normal_force_n : 0.0);
+    ws.sinkage_m = soil_carries_most ? soil_out.sinkage_m : 0.0;
   }
   AddBodyContacts();
 }

@@ -18,11 +18,13 @@ namespace {
 constexpr int kFont = cv::FONT_HERSHEY_SIMPLEX;
 const cv::Scalar kBlack(0, 0, 0), kGrid(225, 225, 225), kWhite(255, 255, 255);
 
-// Tableau-like palette (BGR).
+// Tableau-like palette (BGR); twelve colours, so the eleven systems of a full comparison (the
+// paper's ten and the oracle) each get their own.
 cv::Scalar Colour(size_t i) {
   static const cv::Scalar kPalette[] = {
       {180, 119, 31}, {14, 127, 255}, {44, 160, 44}, {40, 39, 214}, {189, 103, 148},
-      {75, 86, 140},  {194, 119, 227}, {127, 127, 127}, {34, 189, 188}, {207, 190, 23}};
+      {75, 86, 140},  {194, 119, 227}, {127, 127, 127}, {34, 189, 188}, {207, 190, 23},
+      {40, 40, 40},   {138, 223, 152}};
   return kPalette[i % (sizeof(kPalette) / sizeof(kPalette[0]))];
 }
 

@@ -12,6 +12,10 @@
 
 namespace vb::terrain {
 
+// What kinds of ground a region holds: only rigid patches, only deformable ones, or both (a
+// soil/rigid seam runs through it).
+enum class GroundMix { kRigid, kDeformable, kMixed };
+
 struct SurfacePoint {
   double height_m = 0.0;
   Vec3 normal_W = Vec3::UnitZ();   // unit, pointing up
@@ -33,6 +37,11 @@ class Terrain {
   SurfacePoint Query(double x_m, double y_m) const;
   // Patch indices under (x, y), clamped.
   void PatchIndex(double x_m, double y_m, int* row, int* col) const;
+  // Material of the patch under (x, y) (the SurfacePoint default without semantics).
+  SurfaceClass SurfaceAt(double x_m, double y_m) const;
+  // The kinds of ground of the patches overlapping the axis-aligned square of half size
+  // `half_m` around (x, y): which contact model(s) a wheel there needs. A few patches at most.
+  GroundMix MixAround(double x_m, double y_m, double half_m) const;
 
   // The triangle mesh of the surface (vertices in world frame, CCW triangles seen from above).
   void Mesh(std::vector<Vec3>* vertices_W, std::vector<int>* triangles) const;

@@ -32,8 +32,17 @@ struct ContactGeometry {
 // Finds the contact of a cylinder of radius r and width w with centre c_W and spin axis axis_W
 // (unit). On even ground penetration_m is the mean penetration over the width (normal force =
 // k * mean); with several contacts, the resultant of their penalty forces. Allocates nothing.
+//
+// GroundScope::kRigidOnly is for a wheel near a soil/rigid seam whose soil part the soil model
+// carries: only the rigid patches are ground here. Their surface ends at the seam in an edge with
+// a vertical face below it (the soil side is open), so a wheel sunk in a rut meets the rigid
+// patch as a step to climb: the edge as a convex corner (normal from the edge to the wheel
+// centre) or, with the edge above the centre, the vertical face (horizontal normal), never as the
+// rigid surface's full height above the wheel's bottom.
+enum class GroundScope { kAll, kRigidOnly };
 ContactGeometry FindWheelContact(const terrain::Terrain& terrain, const Vec3& c_W,
-                                 const Vec3& axis_W, double radius_m, double width_m);
+                                 const Vec3& axis_W, double radius_m, double width_m,
+                                 GroundScope scope = GroundScope::kAll);
 
 // Bristle state of one contact (world-frame tangential deflection, m).
 struct BristleState {
