@@ -10,7 +10,7 @@ import gymnasium as gym
 import numpy as np
 import pytest
 
-from vb_gym import Crop, ServerCrashed, VbEnv, VbVectorEnv
+from vb_gym import Crop, EnvConfig, ServerCrashed, VbEnv, VbVectorEnv
 
 from conftest import RIGID_TASK, RIGID_TASK_2
 
@@ -97,3 +97,27 @@ def test_a_crashed_worker_is_named_and_the_others_are_closed():
         venv.step(np.zeros((2, 2), np.float32))
     assert venv.closed
     venv.close()
+
+
+def test_a_subclass_chooses_each_episode_through_episode_options():
+    """The training env (train/ppo.py LevelVectorEnv) draws (task, pair) from its sampler for
+    every env reset without options, and resets exactly like VbVectorEnv given those options."""
+    from vb_gym.train.ppo import LevelVectorEnv
+
+    class Fixed:
+        calls = 0
+
+        def sample(self):
+            Fixed.calls += 1
+            return 1, 0
+
+    config = EnvConfig.from_kwargs(**OPTS)
+    with LevelVectorEnv(2, config, Fixed()) as level:
+        obs, _ = level.reset(seed=3)
+        assert Fixed.calls == 2
+        level.reset(seed=3, options={"task": 0, "pair": 0})
+        assert Fixed.calls == 2
+    with VbVectorEnv(2, config, autoreset_mode="same_step") as plain:
+        ref, _ = plain.reset(seed=3, options={"task": 1, "pair": 0})
+    for key in ref:
+        assert np.array_equal(obs[key], ref[key]), key

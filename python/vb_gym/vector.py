@@ -114,11 +114,17 @@ class VbVectorEnv(VectorEnv):
         self._pending_reset[:] = False
         return self._obs, infos
 
+    def _episode_options(self, i: int, options: dict[str, Any] | None
+                         ) -> dict[str, Any] | None:
+        """The reset options of env i's next episode: the caller's (subclasses may choose)."""
+        return options
+
     def _reset_envs(self, indices: Sequence[int], options: dict[str, Any] | None
                     ) -> dict[int, tuple[Any, dict[str, Any]]]:
         for i in indices:
+            opts = self._episode_options(i, options)
             try:
-                self._cores[i].send_reset(*draw_episode(self._cores[i], self._rng(i), options))
+                self._cores[i].send_reset(*draw_episode(self._cores[i], self._rng(i), opts))
             except (ServerCrashed, VbGymError) as e:
                 raise self._fail(i, e) from None
         out = {}

@@ -89,9 +89,15 @@ bool GroundBeyondLowestFace(const engine::ConvexShape& body, const Terrain& grou
 
 void GroundContacts(const engine::ConvexShape& body, const Terrain& ground, double body_friction,
                     int max_contacts, ContactScratch* scratch, std::vector<BodyContact>* out) {
+  GroundContacts(body, ground, MaxGroundHeightUnder(body.aabb_min, body.aabb_max, ground),
+                 body_friction, max_contacts, scratch, out);
+}
+
+void GroundContacts(const engine::ConvexShape& body, const Terrain& ground, double max_h,
+                    double body_friction, int max_contacts, ContactScratch* scratch,
+                    std::vector<BodyContact>* out) {
   std::vector<BodyContact>& cand = scratch->candidates;
   cand.clear();
-  const double max_h = MaxGroundHeightUnder(body.aabb_min, body.aabb_max, ground);
   const HeightGrid& g = ground.grid();
   const double west = -0.5 * ground.size_x_m(), north = 0.5 * ground.size_y_m();
   const double dx = ground.spacing_x_m(), dy = ground.spacing_y_m();

@@ -528,12 +528,13 @@ void Vehicle::AddBodyContacts() {
   // ground under it, no obstacle near) end there.
   for (size_t k = 0; k < b.for_ground_B.size(); ++k) {
     b.for_ground_B[k].TransformInto(reference, &b.posed, /*with_samples=*/false);
-    if (b.posed.aabb_min.z() <=
-            terrain::MaxGroundHeightUnder(b.posed.aabb_min, b.posed.aabb_max, terrain_) &&
+    const double max_ground_h =
+        terrain::MaxGroundHeightUnder(b.posed.aabb_min, b.posed.aabb_max, terrain_);
+    if (b.posed.aabb_min.z() <= max_ground_h &&
         !terrain::GroundBeyondLowestFace(b.posed, terrain_)) {
       b.for_ground_B[k].TransformSamplesInto(reference, &b.posed);
-      terrain::GroundContacts(b.posed, terrain_, kBodyFriction, kMaxGroundContactsPerPiece,
-                              &b.scratch, &b.contacts);
+      terrain::GroundContacts(b.posed, terrain_, max_ground_h, kBodyFriction,
+                              kMaxGroundContactsPerPiece, &b.scratch, &b.contacts);
     }
     if (obstacles_ != nullptr) {
       obstacles_->Overlapping(b.posed.aabb_min, b.posed.aabb_max, &b.scratch.obstacles);

@@ -17,23 +17,7 @@
 namespace vb::controllers {
 namespace {
 
-// A 128 m world whose heights are h(x, y) at the 1 m vertices.
-terrain::TaskSpec WorldOf(const std::function<double(double, double)>& h) {
-  terrain::TaskSpec t = test::PlaneTask(128.0);
-  const int n = t.heights.cols;
-  double lo = 1e300, hi = -1e300;
-  for (int r = 0; r < n; ++r) {
-    for (int c = 0; c < n; ++c) {
-      const double z = h(-64.0 + c, 64.0 - r);
-      t.heights.heights_m[static_cast<size_t>(r) * n + c] = z;
-      lo = std::min(lo, z);
-      hi = std::max(hi, z);
-    }
-  }
-  t.min_height_m = lo;
-  t.max_height_m = hi > lo ? hi : lo + 1.0;
-  return t;
-}
+using test::WorldOf;
 
 EpisodeContext ContextOf(const terrain::GroundTruthMaps& maps) {
   EpisodeContext c;

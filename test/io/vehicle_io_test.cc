@@ -398,5 +398,24 @@ TEST_F(VehicleFitTest, SuspensionKeysMustFitTheModel) {
                  "must be at least 1e-4 s");
 }
 
+// Keys read from the loader's tables (one entry a key) keep their checks and name the file, the
+// line and the whole key path, in every mechanism: tracks, TMeasy tire, hard points, solid axle,
+// driveline.
+TEST_F(VehicleFitTest, TableReadKeysNameFileLineAndKey) {
+  ExpectFitError("m113", "torsion_damping_nmsprad: 500.0", "torsion_damping_nmsprad: -1.0", 0,
+                 "", "tracks.torsion_damping_nmsprad", "must be >= 0, got -1.0");
+  ExpectFitError("m113", "road_wheel_z_m: 0.0", "road_wheel_z_m: [0.1]", 0, "",
+                 "tracks.road_wheel_z_m", "expected a number");
+  ExpectFitError("hmmwv_tmeasy", "slip_damping_nspm: 2000.0", "slip_damping_nspm: -5.0", 0, "",
+                 "tire.slip_damping_nspm", "must be >= 0");
+  ExpectFitError("hmmwv", "hardpoints_in:\n        spindle: [-1.59, 35.815, -1.035]\n",
+                 "hardpoints_in:\n", 0, "hardpoints_in:",
+                 "axles[0].suspension.hardpoints_in.spindle", "missing required key 'spindle'");
+  ExpectFitError("man10t", "degression_compression_spm: 3.0", "degression_compression_spm: -3.0",
+                 0, "", "axles[0].suspension.degression_compression_spm", "must be >= 0");
+  ExpectFitError("feda", "lock_axle_differentials: true", "lock_axle_differentials: 1", 0, "",
+                 "driveline.lock_axle_differentials", "expected true or false");
+}
+
 }  // namespace
 }  // namespace vb::io

@@ -15,6 +15,7 @@
 
 #include "io/soil_io.h"
 #include "io/vehicle_io.h"
+#include "support/slope_climb.h"
 #include "support/vehicle_sim.h"
 #include "vb/soil/bekker.h"
 #include "vb/soil/scm_soil.h"
@@ -214,27 +215,9 @@ TEST(TrackM113, LandsFromTheStartHeight) {
   EXPECT_LT(std::abs(sim.state().rpy.pitch_rad), 0.02);
 }
 
-bool Climbs(const vehicles::VehicleParams& p, double angle_rad, double mu) {
-  const double sx = std::tan(angle_rad);
-  test::VehicleSim sim(test::PlaneTask(128.0, sx, 0.0, mu), p,
-                       test::PoseOnPlane(-40.0, 0, sx, 0, 0, p.wheel.radius_m, 0.02));
-  vehicles::DriverInputs in;
-  in.braking = 1.0;
-  sim.Run(1.5, in);
-  const Vec3 p0 = sim.state().pose_W.position;
-  in.braking = 0.0;
-  in.throttle = 1.0;
-  sim.Run(8.0, in);
-  const Vec3 d = sim.state().pose_W.position - p0;
-  return d.x() > 5.0 * std::cos(angle_rad);
-}
-
+// From rest at x = -40 m, 2 cm above the plane, settled for 1.5 s (test::ClimbsFromRest).
 double SteepestClimbed(const vehicles::VehicleParams& p, double mu, double lo, double hi) {
-  for (int i = 0; i < 7; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (Climbs(p, mid * kDeg, mu) ? lo : hi) = mid;
-  }
-  return lo;
+  return test::SteepestClimbed(p, mu, lo, hi, 7, test::ClimbRun{1.5, 0.02});
 }
 
 // Rolling resistance of the tracks on flat rigid ground: the ground thrust at a steady 3 m/s

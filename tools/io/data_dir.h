@@ -7,6 +7,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace vb::io {
 
@@ -20,6 +21,10 @@ std::string ShareDir();
 // must hold a readable vehicles/ directory with at least one .yaml file; otherwise throws
 // InputError saying where it looked (and why there) and how to point vb at the data.
 std::string DataDir();
+
+// The names (file stems) of the regular .yaml files in `dir`, sorted: what the tools list as the
+// valid vehicles, soils and perception presets. None when `dir` is missing or cannot be read.
+std::vector<std::string> YamlNamesIn(const std::string& dir);
 
 // The task set that ships with vb: <ShareDir()>/tasks (may not exist; not checked).
 std::string TasksDir();

@@ -5,6 +5,7 @@
 #include <map>
 #include <string>
 
+#include "io/data_dir.h"
 #include "io/yaml_strict.h"
 #include "vb/engine/error.h"
 
@@ -129,13 +130,7 @@ runner::PerceptionParams LoadPerception(const std::string& path) {
 }
 
 std::vector<std::string> PerceptionNames(const std::string& data_dir) {
-  std::vector<std::string> names;
-  std::error_code ec;
-  for (const auto& entry :
-       std::filesystem::directory_iterator(data_dir + "/perception", ec)) {
-    if (entry.path().extension() == ".yaml") names.push_back(entry.path().stem().string());
-  }
-  std::sort(names.begin(), names.end());
+  std::vector<std::string> names = YamlNamesIn(data_dir + "/perception");
   names.insert(names.begin(), "none");
   return names;
 }

@@ -1,11 +1,11 @@
 #include "io/soil_io.h"
 
 #include <algorithm>
-#include <filesystem>
 
 #include <cmath>
 #include <string>
 
+#include "io/data_dir.h"
 #include "io/yaml_strict.h"
 #include "vb/engine/error.h"
 #include "vb/engine/types.h"
@@ -108,17 +108,7 @@ std::optional<soil::SoilConfig> LoadSoilIfNeeded(const terrain::TaskSpec& task,
 }
 
 std::vector<std::string> SoilNames(const std::string& data_dir) {
-  namespace fs = std::filesystem;
-  std::vector<std::string> names;
-  std::error_code ec;
-  for (fs::directory_iterator it(fs::path(data_dir) / "soils", ec), end; !ec && it != end;
-       it.increment(ec)) {
-    if (it->path().extension() == ".yaml" && it->is_regular_file(ec)) {
-      names.push_back(it->path().stem().string());
-    }
-  }
-  std::sort(names.begin(), names.end());
-  return names;
+  return YamlNamesIn(data_dir + "/soils");
 }
 
 }  // namespace vb::io

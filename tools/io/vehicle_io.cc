@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 #include <string>
 #include <vector>
 
+#include "io/data_dir.h"
 #include "io/yaml_strict.h"
 #include "vb/engine/convex_shape.h"
 #include "vb/engine/error.h"
@@ -22,6 +22,45 @@ using vehicles::VehicleParams;
 
 // The YAML schema is the struct: keys are exactly the field names of vehicle_params.h, with the
 // same nesting, and every field is required so a file always states the whole vehicle.
+
+// One required key read into a field of P, with the check its value must pass (the messages
+// come from StrictNode and name the file, the line and the key). Tables of these replace a line
+// a key; the keys are read in the table's order, so the first bad key is the one reported.
+enum Check { kAnyNumber, kPositive, kNonNegative, kBool, kVec3, kPositiveVec3 };
+
+template <class P>
+struct Key {
+  const char* name;
+  Check check;
+  double P::*number = nullptr;
+  bool P::*flag = nullptr;
+  Vec3 P::*vec = nullptr;
+
+  Key(const char* n, Check c, double P::*f) : name(n), check(c), number(f) {}
+  Key(const char* n, bool P::*f) : name(n), check(kBool), flag(f) {}
+  Key(const char* n, Check c, Vec3 P::*f) : name(n), check(c), vec(f) {}
+};
+
+template <class T>
+struct Same {
+  using type = T;
+};
+
+// P is deduced from `p` alone, so a table is written as a plain braced list.
+template <class P>
+void ReadKeys(const StrictMap& m, P* p, std::initializer_list<Key<typename Same<P>::type>> keys) {
+  for (const Key<P>& k : keys) {
+    const StrictNode n = m.Required(k.name);
+    switch (k.check) {
+      case kAnyNumber: p->*k.number = n.AsDouble(); break;
+      case kPositive: p->*k.number = n.AsPositive(); break;
+      case kNonNegative: p->*k.number = n.AsNonNegative(); break;
+      case kBool: p->*k.flag = n.AsBool(); break;
+      case kVec3: p->*k.vec = n.AsVec3(); break;
+      case kPositiveVec3: p->*k.vec = n.AsPositiveVec3(); break;
+    }
+  }
+}
 
 // Envelope pieces: a name and the points whose convex hull is the piece. The hull is computed here
 // once to reject degenerate pieces (flat, collinear) with the file and line; the vehicle computes
@@ -50,10 +89,11 @@ std::vector<vehicles::EnvelopePiece> ReadEnvelope(const StrictNode& node) {
 
 vehicles::ChassisParams ReadChassis(const StrictNode& node) {
   const StrictMap m = node.AsMap({"mass_kg", "inertia_kgm2", "com_B", "envelope"});
-  vehicles::ChassisParams p;
-  p.mass_kg = m.Required("mass_kg").AsPositive();
-  p.inertia_kgm2 = m.Required("inertia_kgm2").AsPositiveVec3();
-  p.com_B = m.Required("com_B").AsVec3();
+  using P = vehicles::ChassisParams;
+  P p;
+  ReadKeys(m, &p, {{"mass_kg", kPositive, &P::mass_kg},
+                   {"inertia_kgm2", kPositiveVec3, &P::inertia_kgm2},
+                   {"com_B", kVec3, &P::com_B}});
   p.envelope = ReadEnvelope(m.Required("envelope"));
   return p;
 }
@@ -97,28 +137,31 @@ vehicles::DoubleWishboneHardpoints ReadHardpoints(const StrictNode& node) {
   const StrictMap m = node.AsMap({"spindle", "uca_f", "uca_b", "uca_u", "lca_f", "lca_b", "lca_u",
                                   "shock_c", "shock_u", "tierod_c", "tierod_u"});
   constexpr double kInchToM = 0.0254;  // hard points are given in inches, as published
-  vehicles::DoubleWishboneHardpoints h;
-  h.spindle = kInchToM * m.Required("spindle").AsVec3();
-  h.uca_f = kInchToM * m.Required("uca_f").AsVec3();
-  h.uca_b = kInchToM * m.Required("uca_b").AsVec3();
-  h.uca_u = kInchToM * m.Required("uca_u").AsVec3();
-  h.lca_f = kInchToM * m.Required("lca_f").AsVec3();
-  h.lca_b = kInchToM * m.Required("lca_b").AsVec3();
-  h.lca_u = kInchToM * m.Required("lca_u").AsVec3();
-  h.shock_c = kInchToM * m.Required("shock_c").AsVec3();
-  h.shock_u = kInchToM * m.Required("shock_u").AsVec3();
-  h.tierod_c = kInchToM * m.Required("tierod_c").AsVec3();
-  h.tierod_u = kInchToM * m.Required("tierod_u").AsVec3();
+  using H = vehicles::DoubleWishboneHardpoints;
+  static const std::pair<const char*, Vec3 H::*> kPoints[] = {
+      {"spindle", &H::spindle}, {"uca_f", &H::uca_f},     {"uca_b", &H::uca_b},
+      {"uca_u", &H::uca_u},     {"lca_f", &H::lca_f},     {"lca_b", &H::lca_b},
+      {"lca_u", &H::lca_u},     {"shock_c", &H::shock_c}, {"shock_u", &H::shock_u},
+      {"tierod_c", &H::tierod_c}, {"tierod_u", &H::tierod_u}};
+  H h;
+  for (const auto& [key, point] : kPoints) h.*point = kInchToM * m.Required(key).AsVec3();
   return h;
+}
+
+// The carrier (knuckle or axle body): keys every suspension has.
+void ReadCarrier(const StrictMap& m, vehicles::SuspensionParams* p) {
+  using P = vehicles::SuspensionParams;
+  ReadKeys(m, p, {{"carrier_mass_kg", kPositive, &P::carrier_mass_kg},
+                  {"carrier_inertia_kgm2", kPositiveVec3, &P::carrier_inertia_kgm2}});
 }
 
 // Stops, carrier and (shock models) motion ratio: keys every suspension but `rigid` has.
 void ReadStopsAndCarrier(const StrictMap& m, vehicles::SuspensionParams* p) {
-  p->bump_travel_m = m.Required("bump_travel_m").AsNonNegative();
-  p->rebound_travel_m = m.Required("rebound_travel_m").AsNonNegative();
+  using P = vehicles::SuspensionParams;
+  ReadKeys(m, p, {{"bump_travel_m", kNonNegative, &P::bump_travel_m},
+                  {"rebound_travel_m", kNonNegative, &P::rebound_travel_m}});
   ReadStopTable(m, p);
-  p->carrier_mass_kg = m.Required("carrier_mass_kg").AsPositive();
-  p->carrier_inertia_kgm2 = m.Required("carrier_inertia_kgm2").AsPositiveVec3();
+  ReadCarrier(m, p);
 }
 
 // The shock-based suspensions (single_wishbone, air_wishbone, solid_axle): the shock must stay
@@ -179,8 +222,7 @@ vehicles::SuspensionParams ReadSuspension(const StrictNode& node, bool steered) 
   if (model == "rigid") {
     const StrictMap m = node.AsMap({"model", "carrier_mass_kg", "carrier_inertia_kgm2"});
     p.model = vehicles::SuspensionModel::kRigid;
-    p.carrier_mass_kg = m.Required("carrier_mass_kg").AsPositive();
-    p.carrier_inertia_kgm2 = m.Required("carrier_inertia_kgm2").AsPositiveVec3();
+    ReadCarrier(m, &p);
     return p;
   }
   if (independent_shock) {
@@ -229,13 +271,15 @@ vehicles::SuspensionParams ReadSuspension(const StrictNode& node, bool steered) 
          "carrier_mass_kg", "carrier_inertia_kgm2"});
     p.model = vehicles::SuspensionModel::kSolidAxle;
     p.spring_law = vehicles::SpringLaw::kProgressive;
-    p.spring_stiffness_npm = m.Required("spring_stiffness_npm").AsPositive();
-    p.spring_k2_npm2 = m.Required("spring_k2_npm2").AsNonNegative();
-    p.spring_free_length_m = m.Required("spring_free_length_m").AsPositive();
-    p.damping_nspm = m.Required("damping_compression_nspm").AsNonNegative();
-    p.degression_compression_spm = m.Required("degression_compression_spm").AsNonNegative();
-    p.damping_expansion_nspm = m.Required("damping_expansion_nspm").AsNonNegative();
-    p.degression_expansion_spm = m.Required("degression_expansion_spm").AsNonNegative();
+    using P = vehicles::SuspensionParams;
+    ReadKeys(m, &p,
+             {{"spring_stiffness_npm", kPositive, &P::spring_stiffness_npm},
+              {"spring_k2_npm2", kNonNegative, &P::spring_k2_npm2},
+              {"spring_free_length_m", kPositive, &P::spring_free_length_m},
+              {"damping_compression_nspm", kNonNegative, &P::damping_nspm},
+              {"degression_compression_spm", kNonNegative, &P::degression_compression_spm},
+              {"damping_expansion_nspm", kNonNegative, &P::damping_expansion_nspm},
+              {"degression_expansion_spm", kNonNegative, &P::degression_expansion_spm}});
     const StrictNode bellcrank = m.Required("bellcrank");
     p.bellcrank = bellcrank.AsBool();
     if (p.bellcrank && !steered) {
@@ -282,11 +326,12 @@ vehicles::SuspensionParams ReadSuspension(const StrictNode& node, bool steered) 
 
 vehicles::WheelParams ReadWheel(const StrictNode& node) {
   const StrictMap m = node.AsMap({"radius_m", "width_m", "mass_kg", "inertia_kgm2"});
-  vehicles::WheelParams p;
-  p.radius_m = m.Required("radius_m").AsPositive();
-  p.width_m = m.Required("width_m").AsPositive();
-  p.mass_kg = m.Required("mass_kg").AsPositive();
-  p.inertia_kgm2 = m.Required("inertia_kgm2").AsPositiveVec3();
+  using P = vehicles::WheelParams;
+  P p;
+  ReadKeys(m, &p, {{"radius_m", kPositive, &P::radius_m},
+                   {"width_m", kPositive, &P::width_m},
+                   {"mass_kg", kPositive, &P::mass_kg},
+                   {"inertia_kgm2", kPositiveVec3, &P::inertia_kgm2}});
   return p;
 }
 
@@ -294,13 +339,14 @@ AxleParams ReadAxle(const StrictNode& node) {
   // `wheel`: an axle whose wheels differ from the vehicle's (the Gator's front and rear tires).
   const StrictMap m = node.AsMap({"x_m", "half_track_m", "z_m", "steered", "driven",
                                   "brake_torque_nm", "suspension", "wheel"});
-  AxleParams p;
-  p.x_m = m.Required("x_m").AsDouble();
-  p.half_track_m = m.Required("half_track_m").AsPositive();
-  p.z_m = m.Required("z_m").AsDouble();
-  p.steered = m.Required("steered").AsBool();
-  p.driven = m.Required("driven").AsBool();
-  p.brake_torque_nm = m.Required("brake_torque_nm").AsNonNegative();
+  using P = AxleParams;
+  P p;
+  ReadKeys(m, &p, {{"x_m", kAnyNumber, &P::x_m},
+                   {"half_track_m", kPositive, &P::half_track_m},
+                   {"z_m", kAnyNumber, &P::z_m},
+                   {"steered", &P::steered},
+                   {"driven", &P::driven},
+                   {"brake_torque_nm", kNonNegative, &P::brake_torque_nm}});
   p.suspension = ReadSuspension(m.Required("suspension"), p.steered);
   if (m.Has("wheel")) p.wheel = ReadWheel(m.Required("wheel"));
   return p;
@@ -356,9 +402,10 @@ vehicles::SteeringParams ReadSteering(const StrictNode& node) {
                                     "link_mass_kg", "link_position_B"});
     p.model = vehicles::SteeringModel::kRackPinion;
     p.max_pinion_angle_rad = below_right_angle(m.Required("max_pinion_angle_rad"));
-    p.pinion_radius_m = m.Required("pinion_radius_m").AsPositive();
-    p.link_mass_kg = m.Required("link_mass_kg").AsNonNegative();
-    p.link_position_B = m.Required("link_position_B").AsVec3();
+    using P = vehicles::SteeringParams;
+    ReadKeys(m, &p, {{"pinion_radius_m", kPositive, &P::pinion_radius_m},
+                     {"link_mass_kg", kNonNegative, &P::link_mass_kg},
+                     {"link_position_B", kVec3, &P::link_position_B}});
   }
   return p;
 }
@@ -366,11 +413,12 @@ vehicles::SteeringParams ReadSteering(const StrictNode& node) {
 
 vehicles::TmeasyDirection ReadTmeasyDirection(const StrictNode& node) {
   const StrictMap m = node.AsMap({"df0", "fm", "sm", "fs", "ss"});
-  vehicles::TmeasyDirection d;
-  d.df0 = m.Required("df0").AsPositive();
-  d.fm = m.Required("fm").AsPositive();
-  d.sm = m.Required("sm").AsPositive();
-  d.fs = m.Required("fs").AsPositive();
+  using D = vehicles::TmeasyDirection;
+  D d;
+  ReadKeys(m, &d, {{"df0", kPositive, &D::df0},
+                   {"fm", kPositive, &D::fm},
+                   {"sm", kPositive, &D::sm},
+                   {"fs", kPositive, &D::fs}});
   const StrictNode ss = m.Required("ss");
   d.ss = ss.AsPositive();
   if (!(d.ss > d.sm)) ss.Fail("sliding slip ss must exceed the peak slip sm");
@@ -378,7 +426,8 @@ vehicles::TmeasyDirection ReadTmeasyDirection(const StrictNode& node) {
 }
 
 vehicles::TireParams ReadTire(const StrictNode& node) {
-  vehicles::TireParams p;
+  using P = vehicles::TireParams;
+  P p;
   const std::string model = ReadModel(
       node,
       {"model", "friction", "normal_stiffness_npm", "normal_damping_nspm",
@@ -393,11 +442,11 @@ vehicles::TireParams ReadTire(const StrictNode& node) {
                                     "normal_damping_nspm", "bristle_stiffness_npm",
                                     "bristle_damping_nspm"});
     p.model = vehicles::TireModel::kRigid;
-    p.friction = m.Required("friction").AsPositive();
-    p.normal_stiffness_npm = m.Required("normal_stiffness_npm").AsPositive();
-    p.normal_damping_nspm = m.Required("normal_damping_nspm").AsNonNegative();
-    p.bristle_stiffness_npm = m.Required("bristle_stiffness_npm").AsPositive();
-    p.bristle_damping_nspm = m.Required("bristle_damping_nspm").AsNonNegative();
+    ReadKeys(m, &p, {{"friction", kPositive, &P::friction},
+                     {"normal_stiffness_npm", kPositive, &P::normal_stiffness_npm},
+                     {"normal_damping_nspm", kNonNegative, &P::normal_damping_nspm},
+                     {"bristle_stiffness_npm", kPositive, &P::bristle_stiffness_npm},
+                     {"bristle_damping_nspm", kNonNegative, &P::bristle_damping_nspm}});
     return p;
   }
   const StrictMap m = node.AsMap(
@@ -406,24 +455,24 @@ vehicles::TireParams ReadTire(const StrictNode& node) {
        "lateral_at_2pn", "mu_0", "rolling_resistance", "relaxation_x_m", "relaxation_y_m",
        "slip_damping_nspm"});
   p.model = vehicles::TireModel::kTMeasy;
-  p.unloaded_radius_m = m.Required("unloaded_radius_m").AsPositive();
-  p.width_m = m.Required("width_m").AsPositive();
-  p.vertical_stiffness_npm = m.Required("vertical_stiffness_npm").AsPositive();
-  p.vertical_damping_nspm = m.Required("vertical_damping_nspm").AsNonNegative();
+  ReadKeys(m, &p, {{"unloaded_radius_m", kPositive, &P::unloaded_radius_m},
+                   {"width_m", kPositive, &P::width_m},
+                   {"vertical_stiffness_npm", kPositive, &P::vertical_stiffness_npm},
+                   {"vertical_damping_nspm", kNonNegative, &P::vertical_damping_nspm}});
   const StrictNode rim = m.Required("rim_radius_m");
   p.rim_radius_m = rim.AsPositive();
   if (!(p.rim_radius_m < p.unloaded_radius_m)) rim.Fail("must be below unloaded_radius_m");
-  p.rim_stiffness_npm = m.Required("rim_stiffness_npm").AsNonNegative();
-  p.rated_load_n = m.Required("rated_load_n").AsPositive();
+  ReadKeys(m, &p, {{"rim_stiffness_npm", kNonNegative, &P::rim_stiffness_npm},
+                   {"rated_load_n", kPositive, &P::rated_load_n}});
   p.x_pn = ReadTmeasyDirection(m.Required("longitudinal_at_pn"));
   p.x_2pn = ReadTmeasyDirection(m.Required("longitudinal_at_2pn"));
   p.y_pn = ReadTmeasyDirection(m.Required("lateral_at_pn"));
   p.y_2pn = ReadTmeasyDirection(m.Required("lateral_at_2pn"));
-  p.mu_0 = m.Required("mu_0").AsPositive();
-  p.rolling_resistance = m.Required("rolling_resistance").AsNonNegative();
-  p.relaxation_x_m = m.Required("relaxation_x_m").AsPositive();
-  p.relaxation_y_m = m.Required("relaxation_y_m").AsPositive();
-  p.slip_damping_nspm = m.Required("slip_damping_nspm").AsNonNegative();
+  ReadKeys(m, &p, {{"mu_0", kPositive, &P::mu_0},
+                   {"rolling_resistance", kNonNegative, &P::rolling_resistance},
+                   {"relaxation_x_m", kPositive, &P::relaxation_x_m},
+                   {"relaxation_y_m", kPositive, &P::relaxation_y_m},
+                   {"slip_damping_nspm", kNonNegative, &P::slip_damping_nspm}});
   return p;
 }
 
@@ -500,8 +549,9 @@ vehicles::TransmissionParams ReadTransmission(const StrictNode& node) {
   p.reverse_ratio = m.Required("reverse_ratio").AsPositive();
   p.upshift_rpm = ReadShiftList(m.Required("upshift_rpm"), p.forward_ratios.size());
   p.downshift_rpm = ReadShiftList(m.Required("downshift_rpm"), p.forward_ratios.size());
-  p.min_time_in_gear_s = m.Required("min_time_in_gear_s").AsNonNegative();
-  p.upshift_on_ground_speed = m.Required("upshift_on_ground_speed").AsBool();
+  using P = vehicles::TransmissionParams;
+  ReadKeys(m, &p, {{"min_time_in_gear_s", kNonNegative, &P::min_time_in_gear_s},
+                   {"upshift_on_ground_speed", &P::upshift_on_ground_speed}});
   return p;
 }
 
@@ -511,18 +561,19 @@ vehicles::DrivelineParams ReadDriveline(const StrictNode& node) {
                                   "driveshaft_inertia_kgm2", "central_box_inertia_kgm2",
                                   "axle_shaft_inertia_kgm2", "axle_box_inertia_kgm2",
                                   "lock_coupling_nms_per_rad"});
-  vehicles::DrivelineParams p;
+  using P = vehicles::DrivelineParams;
+  P p;
   if (m.Has("lock_coupling_nms_per_rad")) {
     p.lock_coupling_nms_per_rad = m.Required("lock_coupling_nms_per_rad").AsPositive();
   }
-  p.conical_ratio = m.Required("conical_ratio").AsPositive();
-  p.lock_axle_differentials = m.Required("lock_axle_differentials").AsBool();
-  p.lock_central_differential = m.Required("lock_central_differential").AsBool();
-  p.lock_torque_limit_nm = m.Required("lock_torque_limit_nm").AsNonNegative();
-  p.driveshaft_inertia_kgm2 = m.Required("driveshaft_inertia_kgm2").AsNonNegative();
-  p.central_box_inertia_kgm2 = m.Required("central_box_inertia_kgm2").AsNonNegative();
-  p.axle_shaft_inertia_kgm2 = m.Required("axle_shaft_inertia_kgm2").AsNonNegative();
-  p.axle_box_inertia_kgm2 = m.Required("axle_box_inertia_kgm2").AsNonNegative();
+  ReadKeys(m, &p, {{"conical_ratio", kPositive, &P::conical_ratio},
+                   {"lock_axle_differentials", &P::lock_axle_differentials},
+                   {"lock_central_differential", &P::lock_central_differential},
+                   {"lock_torque_limit_nm", kNonNegative, &P::lock_torque_limit_nm},
+                   {"driveshaft_inertia_kgm2", kNonNegative, &P::driveshaft_inertia_kgm2},
+                   {"central_box_inertia_kgm2", kNonNegative, &P::central_box_inertia_kgm2},
+                   {"axle_shaft_inertia_kgm2", kNonNegative, &P::axle_shaft_inertia_kgm2},
+                   {"axle_box_inertia_kgm2", kNonNegative, &P::axle_box_inertia_kgm2}});
   return p;
 }
 
@@ -577,30 +628,31 @@ vehicles::TrackParams ReadTracks(const StrictNode& node) {
        "bump_angle_rad", "rebound_angle_rad", "stop_stiffness_nmprad", "contact_spacing_m",
        "friction", "normal_stiffness_npm2", "normal_damping_nspm2", "bristle_stiffness_npm2",
        "bristle_damping_nspm2"});
-  vehicles::TrackParams t;
-  t.half_gauge_m = m.Required("half_gauge_m").AsPositive();
-  t.shoe_width_m = m.Required("shoe_width_m").AsPositive();
-  t.shoe_height_m = m.Required("shoe_height_m").AsNonNegative();
-  t.belt_mass_kg = m.Required("belt_mass_kg").AsPositive();
-  t.belt_stiffness_npm = m.Required("belt_stiffness_npm").AsPositive();
-  t.sprocket_B = m.Required("sprocket_B").AsVec3();
-  t.sprocket_radius_m = m.Required("sprocket_radius_m").AsPositive();
-  t.sprocket_mass_kg = m.Required("sprocket_mass_kg").AsPositive();
-  t.sprocket_inertia_kgm2 = m.Required("sprocket_inertia_kgm2").AsPositive();
-  t.brake_torque_nm = m.Required("brake_torque_nm").AsNonNegative();
+  using T = vehicles::TrackParams;
+  T t;
+  ReadKeys(m, &t, {{"half_gauge_m", kPositive, &T::half_gauge_m},
+                   {"shoe_width_m", kPositive, &T::shoe_width_m},
+                   {"shoe_height_m", kNonNegative, &T::shoe_height_m},
+                   {"belt_mass_kg", kPositive, &T::belt_mass_kg},
+                   {"belt_stiffness_npm", kPositive, &T::belt_stiffness_npm},
+                   {"sprocket_B", kVec3, &T::sprocket_B},
+                   {"sprocket_radius_m", kPositive, &T::sprocket_radius_m},
+                   {"sprocket_mass_kg", kPositive, &T::sprocket_mass_kg},
+                   {"sprocket_inertia_kgm2", kPositive, &T::sprocket_inertia_kgm2},
+                   {"brake_torque_nm", kNonNegative, &T::brake_torque_nm}});
   const StrictNode idler = m.Required("idler_B");
   t.idler_B = idler.AsVec3();
   if (std::abs(t.idler_B.x() - t.sprocket_B.x()) < 0.5) {
     idler.Fail("the idler must be at least 0.5 m from the sprocket along x");
   }
-  t.idler_radius_m = m.Required("idler_radius_m").AsPositive();
-  t.idler_mass_kg = m.Required("idler_mass_kg").AsPositive();
-  t.idler_inertia_kgm2 = m.Required("idler_inertia_kgm2").AsPositive();
-  t.tensioner_free_length_m = m.Required("tensioner_free_length_m").AsPositive();
-  t.tensioner_preload_n = m.Required("tensioner_preload_n").AsPositive();
-  t.tensioner_stiffness_npm = m.Required("tensioner_stiffness_npm").AsPositive();
-  t.tensioner_damping_nspm = m.Required("tensioner_damping_nspm").AsNonNegative();
-  t.tensioner_carrier_mass_kg = m.Required("tensioner_carrier_mass_kg").AsPositive();
+  ReadKeys(m, &t, {{"idler_radius_m", kPositive, &T::idler_radius_m},
+                   {"idler_mass_kg", kPositive, &T::idler_mass_kg},
+                   {"idler_inertia_kgm2", kPositive, &T::idler_inertia_kgm2},
+                   {"tensioner_free_length_m", kPositive, &T::tensioner_free_length_m},
+                   {"tensioner_preload_n", kPositive, &T::tensioner_preload_n},
+                   {"tensioner_stiffness_npm", kPositive, &T::tensioner_stiffness_npm},
+                   {"tensioner_damping_nspm", kNonNegative, &T::tensioner_damping_nspm},
+                   {"tensioner_carrier_mass_kg", kPositive, &T::tensioner_carrier_mass_kg}});
   const StrictNode xs = m.Required("road_wheel_x_m");
   for (const StrictNode& x : xs.AsList(2, vehicles::kMaxRoadWheels)) {
     t.road_wheel_x_m.push_back(x.AsDouble());
@@ -622,33 +674,33 @@ vehicles::TrackParams ReadTracks(const StrictNode& node) {
       off.Fail("the right side's road wheels must lie between the sprocket and the idler");
     }
   }
-  t.road_wheel_z_m = m.Required("road_wheel_z_m").AsDouble();
-  t.road_wheel_radius_m = m.Required("road_wheel_radius_m").AsPositive();
-  t.road_wheel_width_m = m.Required("road_wheel_width_m").AsPositive();
-  t.road_wheel_mass_kg = m.Required("road_wheel_mass_kg").AsPositive();
-  t.road_wheel_inertia_kgm2 = m.Required("road_wheel_inertia_kgm2").AsPositive();
+  ReadKeys(m, &t, {{"road_wheel_z_m", kAnyNumber, &T::road_wheel_z_m},
+                   {"road_wheel_radius_m", kPositive, &T::road_wheel_radius_m},
+                   {"road_wheel_width_m", kPositive, &T::road_wheel_width_m},
+                   {"road_wheel_mass_kg", kPositive, &T::road_wheel_mass_kg},
+                   {"road_wheel_inertia_kgm2", kPositive, &T::road_wheel_inertia_kgm2}});
   const StrictNode pivot = m.Required("arm_pivot_offset_B");
   t.arm_pivot_offset_B = pivot.AsVec3();
   if (t.arm_pivot_offset_B.y() != 0.0 ||
       std::hypot(t.arm_pivot_offset_B.x(), t.arm_pivot_offset_B.z()) < 0.05) {
     pivot.Fail("the arm pivot must be at least 0.05 m from the wheel centre in x-z (y = 0)");
   }
-  t.arm_mass_kg = m.Required("arm_mass_kg").AsPositive();
-  t.arm_inertia_kgm2 = m.Required("arm_inertia_kgm2").AsPositiveVec3();
-  t.torsion_stiffness_nmprad = m.Required("torsion_stiffness_nmprad").AsPositive();
-  t.torsion_damping_nmsprad = m.Required("torsion_damping_nmsprad").AsNonNegative();
-  t.torsion_preload_nm = m.Required("torsion_preload_nm").AsDouble();
-  t.bump_angle_rad = m.Required("bump_angle_rad").AsPositive();
-  t.rebound_angle_rad = m.Required("rebound_angle_rad").AsPositive();
-  t.stop_stiffness_nmprad = m.Required("stop_stiffness_nmprad").AsPositive();
+  ReadKeys(m, &t, {{"arm_mass_kg", kPositive, &T::arm_mass_kg},
+                   {"arm_inertia_kgm2", kPositiveVec3, &T::arm_inertia_kgm2},
+                   {"torsion_stiffness_nmprad", kPositive, &T::torsion_stiffness_nmprad},
+                   {"torsion_damping_nmsprad", kNonNegative, &T::torsion_damping_nmsprad},
+                   {"torsion_preload_nm", kAnyNumber, &T::torsion_preload_nm},
+                   {"bump_angle_rad", kPositive, &T::bump_angle_rad},
+                   {"rebound_angle_rad", kPositive, &T::rebound_angle_rad},
+                   {"stop_stiffness_nmprad", kPositive, &T::stop_stiffness_nmprad}});
   const StrictNode spacing = m.Required("contact_spacing_m");
   t.contact_spacing_m = spacing.AsPositive();
   if (t.contact_spacing_m < 0.01) spacing.Fail("must be at least 0.01 m");
-  t.friction = m.Required("friction").AsPositive();
-  t.normal_stiffness_npm2 = m.Required("normal_stiffness_npm2").AsPositive();
-  t.normal_damping_nspm2 = m.Required("normal_damping_nspm2").AsNonNegative();
-  t.bristle_stiffness_npm2 = m.Required("bristle_stiffness_npm2").AsPositive();
-  t.bristle_damping_nspm2 = m.Required("bristle_damping_nspm2").AsNonNegative();
+  ReadKeys(m, &t, {{"friction", kPositive, &T::friction},
+                   {"normal_stiffness_npm2", kPositive, &T::normal_stiffness_npm2},
+                   {"normal_damping_nspm2", kNonNegative, &T::normal_damping_nspm2},
+                   {"bristle_stiffness_npm2", kPositive, &T::bristle_stiffness_npm2},
+                   {"bristle_damping_nspm2", kNonNegative, &T::bristle_damping_nspm2}});
   return t;
 }
 
@@ -743,18 +795,8 @@ vehicles::VehicleParams LoadVehicle(const std::string& path) {
 }
 
 std::vector<std::string> VehicleNames(const std::string& data_dir) {
-  namespace fs = std::filesystem;
   // A missing directory simply has no vehicles; callers report "unknown vehicle" with the list.
-  std::vector<std::string> names;
-  std::error_code ec;
-  for (fs::directory_iterator it(fs::path(data_dir) / "vehicles", ec), end; !ec && it != end;
-       it.increment(ec)) {
-    if (it->path().extension() == ".yaml" && it->is_regular_file(ec)) {
-      names.push_back(it->path().stem().string());
-    }
-  }
-  std::sort(names.begin(), names.end());
-  return names;
+  return YamlNamesIn(data_dir + "/vehicles");
 }
 
 }  // namespace vb::io

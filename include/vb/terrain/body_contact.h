@@ -60,6 +60,11 @@ bool GroundBeyondLowestFace(const engine::ConvexShape& body_W, const Terrain& gr
 // with the ground; body_friction combines with the patch's by the minimum.
 void GroundContacts(const engine::ConvexShape& body_W, const Terrain& ground, double body_friction,
                     int max_contacts, ContactScratch* scratch, std::vector<BodyContact>* out);
+// The same for a caller that has MaxGroundHeightUnder(body_W.aabb_min, body_W.aabb_max, ground)
+// already (its quick reject): `max_ground_h_m` must be that value.
+void GroundContacts(const engine::ConvexShape& body_W, const Terrain& ground,
+                    double max_ground_h_m, double body_friction, int max_contacts,
+                    ContactScratch* scratch, std::vector<BodyContact>* out);
 
 // Appends at most max_per_obstacle contacts per touching obstacle.
 void ObstacleContacts(const engine::ConvexShape& body_W, const ObstacleField& field,

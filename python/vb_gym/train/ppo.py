@@ -26,8 +26,6 @@ import numpy as np
 
 from ..learned import CLIP, NUM_FEATURES, features, learned_env_config
 from ..vector import VbVectorEnv
-from ..env import draw_episode
-from ..protocol import ServerCrashed, VbGymError
 from ..reward import RewardWeights
 from .curricula import ManualCurriculum, PrioritizedLevelReplay, UniformSampler
 from .worlds import training_worlds
@@ -65,24 +63,12 @@ class LevelVectorEnv(VbVectorEnv):
         self.sampler = sampler
         super().__init__(num_envs, config, autoreset_mode="same_step")
 
-    def _reset_envs(self, indices: Sequence[int], options: dict[str, Any] | None
-                    ) -> dict[int, tuple[Any, dict[str, Any]]]:
-        for i in indices:
-            opts = options
-            if opts is None:
-                task, pair = self.sampler.sample()
-                opts = {"task": task, "pair": pair}
-            try:
-                self._cores[i].send_reset(*draw_episode(self._cores[i], self._rng(i), opts))
-            except (ServerCrashed, VbGymError) as e:
-                raise self._fail(i, e) from None
-        out = {}
-        for i in indices:
-            try:
-                out[i] = self._cores[i].receive_reset()
-            except (ServerCrashed, VbGymError) as e:
-                raise self._fail(i, e) from None
-        return out
+    def _episode_options(self, i: int, options: dict[str, Any] | None
+                         ) -> dict[str, Any] | None:
+        if options is not None:
+            return options
+        task, pair = self.sampler.sample()
+        return {"task": task, "pair": pair}
 
 
 def make_vec_env(num_envs: int, config: Any, sampler: Any, episode_log: Path):
