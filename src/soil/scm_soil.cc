@@ -247,6 +247,24 @@ struct ScmSoil::Impl {
     nb[3] = lj != 0 ? n - kTileSize : At(i, j - 1, allocate);
   }
 
+  // Whether z is at or above the soil top of every tile row of grid rows j_lo..j_hi over the
+  // tiles holding columns i_lo..i_hi, all of them inside the world and allocated (false else).
+  bool AboveSoilTops(int i_lo, int i_hi, int j_lo, int j_hi, double z) const {
+    if (i_lo < i_min || i_hi > i_max || j_lo < j_min || j_hi > j_max) return false;
+    const int tx0 = (i_lo - i_min) >> kTileBits, tx1 = (i_hi - i_min) >> kTileBits;
+    for (int j = j_lo; j <= j_hi; ++j) {
+      const int lj = j - j_min;
+      const size_t row = static_cast<size_t>(lj >> kTileBits) * tiles_x;
+      for (int tx = tx0; tx <= tx1; ++tx) {
+        const int32_t idx = tile_index[row + static_cast<size_t>(tx)];
+        if (idx < 0 || !(z >= tiles[static_cast<size_t>(idx)]->row_top_m[lj & kTileMask])) {
+          return false;
+        }
+      }
+    }
+    return true;
+  }
+
   int32_t Allocate(int tx, int ty) {
     auto tile = std::make_unique<Tile>();
     const auto id = static_cast<int32_t>(tiles.size());
@@ -652,6 +670,13 @@ TrackSoilOutput ScmSoil::TrackContact(const TrackSoilInput& tr, double dt) {
     row.hw_scan = hw_scan;
     row.t_end = t_end;
     const double tilt = lat.z() / lat_h;
+    // The whole segment at once, exact as the chunk reject below: the belt's lowest point over
+    // the band it scans (t in [0, 1], |l| <= hw_scan) is above every soil top of the tile rows
+    // in its box, and every tile there exists (the scan would allocate none).
+    if (m.AboveSoilTops(i_lo, i_hi, j_lo, j_hi,
+                        std::min(a.z(), b.z()) - hw_scan * std::abs(tilt) - kScanMargin_m)) {
+      continue;
+    }
     const double dx = m.dx, ax = a.x(), az = a.z();
     const int i_min = m.i_min;
     // The quick rejects below bound the belt's height along a row by its linear form
