@@ -7,11 +7,13 @@
 #include "vb/soil/scm_soil.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 #include <utility>
 
 #include "vb/engine/error.h"
+#include "vb/soil/belt_row.h"
 #include "vb/soil/pow_lower_bound.h"
 
 namespace vb::soil {
@@ -71,6 +73,17 @@ double Level(const Node& n) { return n.level0_m - n.plastic_m / n.cos_slope; }
 bool AboveLevel(const Node& n, double z) {
   if (z >= n.level0_m && n.plastic_m >= 0.0) return true;
   return z >= Level(n);
+}
+
+// static_cast<int>(std::ceil(x)) and (std::floor(x)) for x within the range of int: the
+// conversion truncates towards zero, the comparison (exact: an int is a double) adds the step.
+int CeilToInt(double x) {
+  const int t = static_cast<int>(x);
+  return t + (t < x ? 1 : 0);
+}
+int FloorToInt(double x) {
+  const int t = static_cast<int>(x);
+  return t - (t > x ? 1 : 0);
 }
 
 // Lowest point of the wheel cylinder (centre c, unit axis a, radius r, half width hw) on the
@@ -133,6 +146,16 @@ struct ScmSoil::Impl {
     *p_bekker = kb * std::pow(z, soils[slot].bekker_n);
     return sigma > *p_bekker;
   }
+  // Janosi-Hanamoto: the share 1 - e^(-j/K) of the shear strength mobilised at shear
+  // displacement j of soil `slot` (K its janosi_shear_m). The displacement is clamped at
+  // shear_cap_m = kShearCapInK K, where the nodes of a spinning wheel or track sit: there the
+  // value comes from the table, computed by the same expression (bit-identical, without exp).
+  std::array<double, 3> shear_cap_m{};
+  std::array<double, 3> capped_mobilised{};
+  double Mobilised(size_t slot, double j) const {
+    if (j == shear_cap_m[slot]) return capped_mobilised[slot];
+    return 1.0 - std::exp(-j / soils[slot].janosi_shear_m);
+  }
   int32_t step = 0;
   ScmStats stats;
   double max_raise_m = 0.0;   // highest level0 - base of any node so far (scan bound)
@@ -180,17 +203,37 @@ struct ScmSoil::Impl {
 
   explicit Impl(const terrain::Terrain& t) : terrain(t) {}
 
-  Node* At(int i, int j, bool allocate) {
-    if (i < i_min || i > i_max || j < j_min || j > j_max) return nullptr;
-    const int li = i - i_min, lj = j - j_min;
-    const size_t t = static_cast<size_t>(lj >> kTileBits) * tiles_x + (li >> kTileBits);
+  // Grid row j's part of a node look-up, for scans that visit several nodes of one row.
+  struct GridRow {
+    bool inside = false;    // j within the world
+    int lj = 0;             // j - j_min
+    size_t tile_base = 0;   // tile_index of the row's first tile (if inside)
+  };
+  GridRow Row(int j) const {
+    GridRow r;
+    r.inside = j >= j_min && j <= j_max;
+    r.lj = j - j_min;
+    r.tile_base = r.inside ? static_cast<size_t>(r.lj >> kTileBits) * tiles_x : 0;
+    return r;
+  }
+  // The node at (i, r's j), its tile allocated first if `allocate`; nullptr outside the world
+  // (or in a tile not allocated). *tile: the node's tile.
+  Node* AtInRow(const GridRow& r, int i, bool allocate, Tile** tile) {
+    if (i < i_min || i > i_max || !r.inside) return nullptr;
+    const int li = i - i_min;
+    const size_t t = r.tile_base + static_cast<size_t>(li >> kTileBits);
     int32_t idx = tile_index[t];
     if (idx < 0) {
       if (!allocate) return nullptr;
-      idx = Allocate(li >> kTileBits, lj >> kTileBits);
+      idx = Allocate(li >> kTileBits, r.lj >> kTileBits);
       tile_index[t] = idx;
     }
-    return &tiles[static_cast<size_t>(idx)]->nodes[(lj & kTileMask) * kTileSize + (li & kTileMask)];
+    *tile = tiles[static_cast<size_t>(idx)].get();
+    return &(*tile)->nodes[(r.lj & kTileMask) * kTileSize + (li & kTileMask)];
+  }
+  Node* At(int i, int j, bool allocate) {
+    Tile* tile = nullptr;
+    return AtInRow(Row(j), i, allocate, &tile);
   }
 
   // The 4-neighbours of node n at (i, j) in the order +i, -i, +j, -j (kDi, kDj), the same
@@ -202,6 +245,24 @@ struct ScmSoil::Impl {
     nb[1] = li != 0 ? n - 1 : At(i - 1, j, allocate);
     nb[2] = lj != kTileMask && j < j_max ? n + kTileSize : At(i, j + 1, allocate);
     nb[3] = lj != 0 ? n - kTileSize : At(i, j - 1, allocate);
+  }
+
+  // Whether z is at or above the soil top of every tile row of grid rows j_lo..j_hi over the
+  // tiles holding columns i_lo..i_hi, all of them inside the world and allocated (false else).
+  bool AboveSoilTops(int i_lo, int i_hi, int j_lo, int j_hi, double z) const {
+    if (i_lo < i_min || i_hi > i_max || j_lo < j_min || j_hi > j_max) return false;
+    const int tx0 = (i_lo - i_min) >> kTileBits, tx1 = (i_hi - i_min) >> kTileBits;
+    for (int j = j_lo; j <= j_hi; ++j) {
+      const int lj = j - j_min;
+      const size_t row = static_cast<size_t>(lj >> kTileBits) * tiles_x;
+      for (int tx = tx0; tx <= tx1; ++tx) {
+        const int32_t idx = tile_index[row + static_cast<size_t>(tx)];
+        if (idx < 0 || !(z >= tiles[static_cast<size_t>(idx)]->row_top_m[lj & kTileMask])) {
+          return false;
+        }
+      }
+    }
+    return true;
   }
 
   int32_t Allocate(int tx, int ty) {
@@ -261,6 +322,8 @@ ScmSoil::ScmSoil(const terrain::Terrain& terrain, const SoilConfig& config)
           std::max(m.soils[k].elastic_stiffness_papm, m.soils[k].bekker_kphi);
       m.tan_friction[k] = std::tan(m.soils[k].friction_angle_rad);
       m.pow_bound[k].Init(m.soils[k].bekker_n);
+      m.shear_cap_m[k] = kShearCapInK * m.soils[k].janosi_shear_m;
+      m.capped_mobilised[k] = 1.0 - std::exp(-m.shear_cap_m[k] / m.soils[k].janosi_shear_m);
     }
   }
   m.dx = config_.grid_spacing_m;
@@ -335,8 +398,8 @@ WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
       double x0 = c.x() + (-lat_reach - uy * a.y()) / a.x();
       double x1 = c.x() + (lat_reach - uy * a.y()) / a.x();
       if (x0 > x1) std::swap(x0, x1);
-      row_lo = std::max(row_lo, static_cast<int>(std::floor(x0 / m.dx)) - 1);
-      row_hi = std::min(row_hi, static_cast<int>(std::ceil(x1 / m.dx)) + 1);
+      row_lo = std::max(row_lo, FloorToInt(x0 / m.dx) - 1);
+      row_hi = std::min(row_hi, CeilToInt(x1 / m.dx) + 1);
     }
     int i = row_lo;
     while (i <= row_hi) {
@@ -398,7 +461,9 @@ WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
   const double k_scale = std::min(1.0, kStiffnessLimit * mass / (k_total * dt * dt));
   const double c_scale = 1.0 / (1.0 + c_total * dt / mass);  // implicit-Euler damper
 
-  // (2) + (3) Node stresses, forces, moments.
+  // (2) + (3) Node stresses, forces, moments. kb: each soil's Bekker modulus kc / b + kphi.
+  double kb[3];
+  for (size_t k = 0; k < 3; ++k) kb[k] = m.soils[k].bekker_kc / b + m.soils[k].bekker_kphi;
   Vec3 force = Vec3::Zero(), torque = Vec3::Zero();
   double sinkage = 0.0;
   const size_t begin = m.contacts.size();
@@ -411,8 +476,8 @@ WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
     double sigma = ke * (z - n.plastic_m);  // elastic trial
     double p_bekker = 0.0;
     double flow = 0.0;
-    if (m.Yields(static_cast<size_t>(n.slot), s.bekker_kc / b + s.bekker_kphi, z, sigma,
-                 &p_bekker)) {  // yield: plastic sinkage follows
+    if (m.Yields(static_cast<size_t>(n.slot), kb[n.slot], z, sigma, &p_bekker)) {
+      // yield: plastic sinkage follows
       sigma = p_bekker;
       const double plastic = z - p_bekker / ke;
       flow = (plastic - n.plastic_m) / ca;
@@ -439,7 +504,7 @@ WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
     const Vec3 vt = v - vn * nw;
     n.shear_m += vt * dt;
     n.shear_m -= n.shear_m.dot(nw) * nw;
-    const double jmax = kShearCapInK * s.janosi_shear_m;
+    const double jmax = m.shear_cap_m[static_cast<size_t>(n.slot)];
     double j_len = n.shear_m.norm();
     if (j_len > jmax) {
       n.shear_m *= jmax / j_len;
@@ -450,7 +515,7 @@ WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
       // Mohr-Coulomb on the total normal stress, damping included (Chrono's order, §2.3).
       const double tan_phi = m.tan_friction[static_cast<size_t>(n.slot)];
       const double tau_max = s.cohesion_pa + (sigma + sigma_damp) * tan_phi;
-      const double tau = tau_max * (1.0 - std::exp(-j_len / s.janosi_shear_m));
+      const double tau = tau_max * m.Mobilised(static_cast<size_t>(n.slot), j_len);
       f -= (tau * area / j_len) * n.shear_m;
     }
     force += f;
@@ -594,6 +659,31 @@ TrackSoilOutput ScmSoil::TrackContact(const TrackSoilInput& tr, double dt) {
       *lo = std::max(*lo, x0);
       *hi = std::min(*hi, x1);
     };
+    // The covered-node test along a row (belt_row.h); locals: no reloads after push_back.
+    BeltRow row;
+    row.dx = m.dx;
+    row.ax = a.x();
+    row.sx = sx;
+    row.len2 = len2;
+    row.lx = lx;
+    row.half_w = half_w;
+    row.hw_scan = hw_scan;
+    row.t_end = t_end;
+    const double tilt = lat.z() / lat_h;
+    // The whole segment at once, exact as the chunk reject below: the belt's lowest point over
+    // the band it scans (t in [0, 1], |l| <= hw_scan) is above every soil top of the tile rows
+    // in its box, and every tile there exists (the scan would allocate none).
+    if (m.AboveSoilTops(i_lo, i_hi, j_lo, j_hi,
+                        std::min(a.z(), b.z()) - hw_scan * std::abs(tilt) - kScanMargin_m)) {
+      continue;
+    }
+    const double dx = m.dx, ax = a.x(), az = a.z();
+    const int i_min = m.i_min;
+    // The quick rejects below bound the belt's height along a row by its linear form
+    // z_row + (x - ax) z_slope (z_row: the height at x = ax), which differs from the per-node
+    // height (t, l, then az + t dz + l tilt) by rounding only (~1e-13 m): kScanMargin_m covers
+    // it, so no node they skip could be a contact.
+    const double z_slope = sx / len2 * dz + lx * tilt;
     m.hits.clear();
     for (int j = j_lo; j <= j_hi; ++j) {
       const double uy = j * m.dx - a.y();
@@ -601,29 +691,28 @@ TrackSoilOutput ScmSoil::TrackContact(const TrackSoilInput& tr, double dt) {
       clip(uy * sy / len2, sx / len2, t_lo, t_hi, &lo, &hi);
       clip(uy * ly, lx, -hw_scan, hw_scan, &lo, &hi);
       if (lo > hi) continue;
-      const int i0 = std::max(i_lo, static_cast<int>(std::ceil((a.x() + lo) / m.dx - 1e-9)));
-      const int i1 = std::min(i_hi, static_cast<int>(std::floor((a.x() + hi) / m.dx + 1e-9)));
+      const int i0 = std::max(i_lo, CeilToInt((a.x() + lo) / m.dx - 1e-9));
+      const int i1 = std::min(i_hi, FloorToInt((a.x() + hi) / m.dx + 1e-9));
+      if (i0 > i1) continue;
       // BeltBottomAt inlined along the row (t, l and the height are linear in x)
-      const double t_row = uy * sy / len2, l_row = uy * ly;
-      const double tilt = lat.z() / lat_h;
-      const double dx = m.dx, ax = a.x(), az = a.z();   // locals: no reloads after push_back
+      row.t_row = uy * sy / len2;
+      row.l_row = uy * ly;
+      const double z_row = az + row.t_row * dz + row.l_row * tilt;
+      const Impl::GridRow grid_row = m.Row(j);
       // The row tile by tile: one look-up per tile (the first node in it that the belt covers),
       // the others by pointer offset.
       int i = i0;
       while (i <= i1) {
         const int chunk_end =
-            std::min(i1, m.i_min + (((i - m.i_min) >> kTileBits) + 1) * kTileSize - 1);
+            std::min(i1, i_min + (((i - i_min) >> kTileBits) + 1) * kTileSize - 1);
         // The first node in this tile that the belt covers: the one tile look-up (which
         // allocates the tile), the other nodes by pointer offset.
         Node* base = nullptr;
+        Tile* tile = nullptr;
         for (; i <= chunk_end; ++i) {
-          const double ux = i * dx - ax;
-          const double t = t_row + ux * sx / len2;
-          const double l = l_row + ux * lx;
-          if (std::abs(l) > hw_scan || t < 0.0 || t > t_end) continue;
-          const double cover = std::min(1.0, (half_w - std::abs(l)) / dx + 0.5);
-          if (!(cover > 0.0)) continue;
-          base = m.At(i, j, true);
+          double t = 0.0, l = 0.0, cover = 0.0;
+          if (!row.Covers(i, &t, &l, &cover)) continue;
+          base = m.AtInRow(grid_row, i, true, &tile);
           break;
         }
         if (i > chunk_end) continue;   // the belt covers no node of this chunk
@@ -632,33 +721,24 @@ TrackSoilOutput ScmSoil::TrackContact(const TrackSoilInput& tr, double dt) {
           i = chunk_end + 1;
           continue;
         }
-        // Quick rejects, exact (no node they skip could be a contact): the belt height is
-        // linear along the row, so its lowest node over the chunk is an end; above the tile
-        // row's soil top the whole chunk is skipped, and a node with the belt above its
-        // undisturbed level (never below its level) without the full test. kScanMargin_m
-        // covers the rounding of the interpolated height against the per-node evaluation.
-        const double ux0 = base_i * dx - ax, ux1 = chunk_end * dx - ax;
-        const double z0 = az + (t_row + ux0 * sx / len2) * dz + (l_row + ux0 * lx) * tilt;
-        const double z1 = az + (t_row + ux1 * sx / len2) * dz + (l_row + ux1 * lx) * tilt;
-        const Tile& tile = *m.tiles[static_cast<size_t>(base->tile)];
-        if (std::min(z0, z1) - kScanMargin_m >= tile.row_top_m[(base - tile.nodes) >> kTileBits]) {
+        // Quick rejects, exact: the belt height is linear along the row, so its lowest node
+        // over the chunk is an end; above the tile row's soil top the whole chunk is skipped,
+        // and a node with the belt above its undisturbed level (never below its level) without
+        // the full test.
+        const double z0 = z_row + (base_i * dx - ax) * z_slope;
+        const double z1 = z_row + (chunk_end * dx - ax) * z_slope;
+        if (std::min(z0, z1) - kScanMargin_m >= tile->row_top_m[grid_row.lj & kTileMask]) {
           i = chunk_end + 1;
           continue;
         }
-        const double z_step = chunk_end > base_i ? (z1 - z0) / (chunk_end - base_i) : 0.0;
-        for (; i <= chunk_end; ++i) {
+        const double z_step = dx * z_slope;
+        double z_quick = z0 - kScanMargin_m;   // at node i
+        for (; i <= chunk_end; ++i, z_quick += z_step) {
           Node* node = base + (i - base_i);  // beyond i_max: a rigid node (slot -1), skipped
           if (node->slot < 0) continue;
-          if (node->plastic_m >= 0.0 &&
-              z0 + (i - base_i) * z_step - kScanMargin_m >= node->level0_m) {
-            continue;
-          }
-          const double ux = i * dx - ax;
-          const double t = t_row + ux * sx / len2;
-          const double l = l_row + ux * lx;
-          if (std::abs(l) > hw_scan || t < 0.0 || t > t_end) continue;
-          const double cover = std::min(1.0, (half_w - std::abs(l)) / dx + 0.5);
-          if (!(cover > 0.0)) continue;
+          if (node->plastic_m >= 0.0 && z_quick >= node->level0_m) continue;
+          double t = 0.0, l = 0.0, cover = 0.0;
+          if (!row.Covers(i, &t, &l, &cover)) continue;
           const double hit_z = az + t * dz + l * tilt;
           if (AboveLevel(*node, hit_z)) continue;
           m.hits.push_back({node, i, j, Vec3(i * dx, j * dx, hit_z), l, t, cover});
@@ -681,6 +761,8 @@ TrackSoilOutput ScmSoil::TrackContact(const TrackSoilInput& tr, double dt) {
     }
     const double k_scale = std::min(1.0, kStiffnessLimit * seg_mass / (k_total * dt * dt));
     const double c_scale = 1.0 / (1.0 + c_total * dt / seg_mass);
+    double kb[3];   // each soil's Bekker modulus kc / b + kphi
+    for (size_t q = 0; q < 3; ++q) kb[q] = m.soils[q].bekker_kc / bb + m.soils[q].bekker_kphi;
     const size_t begin = m.contacts.size();
     for (const Impl::Hit& h : m.hits) {
       Node& nd = *h.node;
@@ -691,8 +773,7 @@ TrackSoilOutput ScmSoil::TrackContact(const TrackSoilInput& tr, double dt) {
       double sigma = ke * (z - nd.plastic_m);
       double p_bekker = 0.0;
       double flow = 0.0;
-      if (m.Yields(static_cast<size_t>(nd.slot), sp.bekker_kc / bb + sp.bekker_kphi, z, sigma,
-                   &p_bekker)) {
+      if (m.Yields(static_cast<size_t>(nd.slot), kb[nd.slot], z, sigma, &p_bekker)) {
         sigma = p_bekker;
         const double plastic = z - p_bekker / ke;
         flow = (plastic - nd.plastic_m) / ca;
@@ -708,7 +789,7 @@ TrackSoilOutput ScmSoil::TrackContact(const TrackSoilInput& tr, double dt) {
       const Vec3 vt = v - vn * nw;
       nd.shear_m += vt * dt;
       nd.shear_m -= nd.shear_m.dot(nw) * nw;
-      const double jmax = kShearCapInK * sp.janosi_shear_m;
+      const double jmax = m.shear_cap_m[static_cast<size_t>(nd.slot)];
       double j_len = nd.shear_m.norm();
       if (j_len > jmax) {
         nd.shear_m *= jmax / j_len;
@@ -718,7 +799,7 @@ TrackSoilOutput ScmSoil::TrackContact(const TrackSoilInput& tr, double dt) {
       if (j_len > 0.0) {
         const double tan_phi = m.tan_friction[static_cast<size_t>(nd.slot)];
         const double tau_max = sp.cohesion_pa + (sigma + sigma_damp) * tan_phi;
-        const double tau = tau_max * (1.0 - std::exp(-j_len / sp.janosi_shear_m));
+        const double tau = tau_max * m.Mobilised(static_cast<size_t>(nd.slot), j_len);
         f -= (tau * area / j_len) * nd.shear_m;
       }
       out.point_force_W[k] += (1.0 - t) * f;
