@@ -1,7 +1,9 @@
 // Wheeled vehicle on the physics adapter. Multibody topology per wheel (axle-major order):
-//   base (chassis COM) --prismatic z--> carrier --[revolute z: steering knuckle]--> wheel (revolute y)
+//   base (chassis COM) --prismatic z--> carrier --[prescribed z: steering knuckle]--> wheel (revolute y)
 // The carrier slides along chassis z (strut suspension, travel limited by joint limits = bump and
-// rebound stops); steered axles have a knuckle link; wheels spin about their y axis.
+// rebound stops); steered axles have a knuckle link whose angle is prescribed from the steering
+// linkage every step (as the original's kinematic rack or arm: no steering compliance, no
+// degree of freedom or constraint row in the dynamics); wheels spin about their y axis.
 #include "vb/vehicles/vehicle.h"
 
 #include <algorithm>
@@ -43,6 +45,7 @@ struct Vehicle::Internals {
   Table1D left_steer_angle;        // kRackPinion: left road-wheel angle vs rack travel
   double rack_sign = 1.0;          // rack direction that turns the wheels left
   double rack_max_m = 0.0;
+  double rack_steering = 0.0;      // kRackPinion: the steering input the rack has reached
   // Per-step scratch (allocated once).
   std::vector<double> wheel_speeds;
   std::vector<bool> driven;
@@ -93,6 +96,14 @@ constexpr double kHardLimitBeyondStops_m = 0.03;
 // A rigid suspension's carrier is held at s = 0 by an implicit position servo of at most this
 // many chassis weights (it carries a share of one, plus the impacts).
 constexpr double kRigidHoldWeights = 20.0;
+
+// The original drives its rack by a kinematic actuator (a constraint on the rack's travel) in a
+// Chrono NSC system, which corrects a constraint's error at most at its
+// max_penetration_recovery_speed, 0.6 (m/s for the rack's travel;
+// reference_vehicle_soil.md 1.1): a step in the steering input moves the rack at 0.6 m/s.
+// A controller's rate-limited steering (PID: 0.05 per 5 ms, 0.52 m/s of HMMWV rack) is followed
+// exactly.
+constexpr double kRackRecoverySpeed_mps = 0.6;
 
 // The wheel of an axle: its own if it gives one, else the vehicle's.
 const WheelParams& WheelOf(const VehicleParams& p, const AxleParams& a) {
@@ -283,7 +294,7 @@ Vehicle::Vehicle(const VehicleParams& params, const terrain::Terrain& terrain, c
       if (axle.steered) {
         engine::MultiBodyLinkSpec knuckle;
         knuckle.parent = parent;
-        knuckle.joint = engine::JointType::kRevolute;
+        knuckle.joint = engine::JointType::kPrescribedRevolute;
         knuckle.axis_P = Vec3::UnitZ();
         knuckle.mass_kg = su.carrier_mass_kg / 2.0;
         knuckle.inertia_kgm2 = su.carrier_inertia_kgm2;
@@ -357,19 +368,39 @@ void Vehicle::Synchronize(double dt) {
   }
   const size_t n = in_->corners.size();
 
-  // steering: road-wheel angles, then implicit position servos on the knuckles
+  // steering: road-wheel angles, prescribed on the knuckles (their rate from the change since the
+  // last step: it moves the wheel's tread points as a steering joint's rate would)
+  double steering = inputs_.steering;
+  if (params_.steering.model == SteeringModel::kRackPinion) {
+    const double travel_m = params_.steering.max_pinion_angle_rad * params_.steering.pinion_radius_m;
+    const double max_change = travel_m > 0.0 ? kRackRecoverySpeed_mps * dt / travel_m : 2.0;
+    in_->rack_steering +=
+        std::clamp(inputs_.steering - in_->rack_steering, -max_change, max_change);
+    steering = in_->rack_steering;
+  }
   double left = 0.0, right = 0.0;
   if (in_->linkage_steering) {
     // per steered axle, below
   } else if (params_.steering.model == SteeringModel::kRackPinion) {
     // rack travel from the pinion; the right wheel mirrors the left one (y -> -y)
-    const double rack = in_->rack_sign * inputs_.steering * in_->rack_max_m;
+    const double rack = in_->rack_sign * steering * in_->rack_max_m;
     left = in_->left_steer_angle(rack);
     right = -in_->left_steer_angle(-rack);
   } else {
     const double track = params_.axles.empty() ? 0.0 : 2.0 * params_.axles.front().half_track_m;
-    AckermannAngles(params_.steering, inputs_.steering, in_->steer_wheelbase_m, track, &left,
+    AckermannAngles(params_.steering, steering, in_->steer_wheelbase_m, track, &left,
                     &right);
+  }
+  for (const Internals::Corner& c : in_->corners) {
+    if (c.knuckle_link < 0) continue;
+    if (in_->linkage_steering) {
+      LinkageSteerAngles(params_.steering, in_->turn, steering, c.axle->x_m,
+                         2.0 * c.axle->half_track_m, c.axle->suspension.steering_arm_m, &left,
+                         &right);
+    }
+    const double angle = c.side > 0 ? left : right;
+    const double rate = dt > 0.0 ? (angle - world_->JointPosition(body_, c.knuckle_link)) / dt : 0.0;
+    world_->SetPrescribedJoint(body_, c.knuckle_link, angle, rate);
   }
 
   // powertrain: wheel drive torques from the engine map through gears and differentials
@@ -385,14 +416,6 @@ void Vehicle::Synchronize(double dt) {
     Internals::Corner& c = in_->corners[i];
     const AxleParams& axle = *c.axle;
     const SuspensionParams& su = axle.suspension;
-
-    if (c.knuckle_link >= 0) {
-      if (in_->linkage_steering) {
-        LinkageSteerAngles(params_.steering, in_->turn, inputs_.steering, axle.x_m,
-                           2.0 * axle.half_track_m, su.steering_arm_m, &left, &right);
-      }
-      world_->SetJointPositionMotor(body_, c.knuckle_link, c.side > 0 ? left : right, 1e5);
-    }
 
     // suspension: spring-damper on the slider (strut) or along the shock (double wishbone), the
     // damper implicit on the reduced mass of the wheel carrier against its share of the chassis

@@ -67,6 +67,7 @@ struct Circle {
   double yaw_rate_radps = 0.0;
   double centripetal_n = 0.0;     // m v^2 / R
   double soil_inward_n = 0.0;     // soil force towards the centre, summed over the wheels
+  double required_inward_n = 0.0; // m a of the centre of mass towards the centre (any motion)
   double sinkage_m = 0.0;         // mean over the wheels
   double drive_slip = 0.0;        // largest driving slip of the four wheels, time mean
 };
@@ -90,10 +91,22 @@ Circle SteadyTurn(SurfaceClass surface, double steering, double speed_mps, doubl
     vehicle.SetSoil(recorder.get());
   }
   const double mass = test::TotalMass(p);
+  // Position of the vehicle's centre of mass: chassis COM, unsprung masses at the wheel centres
+  // (the steering link's few kg go with the chassis).
+  const auto com_position = [&](const vehicles::VehicleState& st) {
+    Vec3 x = (p.chassis.mass_kg + p.steering.link_mass_kg) *
+             (st.pose_W.position + st.pose_W.rotation * p.chassis.com_B);
+    for (size_t k = 0; k < st.wheels.size(); ++k) {
+      x += test::UnsprungMass(p, p.axles[k / 2]) * st.wheels[k].center_W;
+    }
+    return Vec3(x / mass);
+  };
   Circle c;
   int n = 0;
   const long steps = std::lround(seconds / test::kStep_s);
   const long first = steps - std::lround(window_s / test::kStep_s);
+  Vec3 com_before = com_position(vehicle.state());  // before the previous step
+  Vec3 com_now = com_before;                          // before this step
   for (long i = 0; i < steps; ++i) {
     const vehicles::VehicleState& s = vehicle.state();
     vehicle.SetInputs(test::SpeedControl(speed_mps, s.forward_speed_mps, steering));
@@ -105,6 +118,13 @@ Circle SteadyTurn(SurfaceClass surface, double steering, double speed_mps, doubl
     if (soil) soil->EndStep(test::kStep_s);
     world.Step(test::kStep_s);
     vehicle.UpdateState();
+    // The step's force changes the velocity by F dt / m and the position by the new velocity
+    // times dt (semi-implicit Euler), so F = m (x_next - 2 x + x_prev) / dt^2 exactly.
+    const Vec3 com_after = com_position(s);
+    const Vec3 com_acceleration =
+        (com_after - 2.0 * com_now + com_before) / (test::kStep_s * test::kStep_s);
+    com_before = com_now;
+    com_now = com_after;
     if (i >= first) {
       const Vec3 v = s.velocity_W;
       const double speed = v.head<2>().norm();
@@ -116,6 +136,7 @@ Circle SteadyTurn(SurfaceClass surface, double steering, double speed_mps, doubl
         // inward: the horizontal normal to the velocity, on the side the vehicle turns to
         const Vec3 inward = Vec3(-v.y(), v.x(), 0.0).normalized() * (w >= 0 ? 1.0 : -1.0);
         c.soil_inward_n += recorder->step_force_W.dot(inward);
+        c.required_inward_n += mass * com_acceleration.dot(inward);
         c.drive_slip += recorder->max_slip;
       }
       double sink = 0.0;
@@ -128,6 +149,7 @@ Circle SteadyTurn(SurfaceClass surface, double steering, double speed_mps, doubl
   c.yaw_rate_radps /= n;
   c.centripetal_n /= n;
   c.soil_inward_n /= n;
+  c.required_inward_n /= n;
   c.sinkage_m /= n;
   c.drive_slip /= n;
   c.radius_m = c.speed_mps / std::abs(c.yaw_rate_radps);
@@ -135,10 +157,10 @@ Circle SteadyTurn(SurfaceClass surface, double steering, double speed_mps, doubl
 }
 
 void Print(const char* label, SurfaceClass surface, double steering, const Circle& c) {
-  std::printf("%-14s steering %.2f %-5s v %.2f m/s  R %6.2f m  m v^2/R %5.0f N  soil inward %5.0f N"
-              "  sinkage %.3f m  max drive slip %.2f\n",
+  std::printf("%-14s steering %.2f %-5s v %.2f m/s  R %6.2f m  m v^2/R %5.0f N  m a_in %5.0f N"
+              "  soil inward %5.0f N  sinkage %.3f m  max drive slip %.2f\n",
               label, steering, Name(surface), c.speed_mps, c.radius_m, c.centripetal_n,
-              c.soil_inward_n, c.sinkage_m, c.drive_slip);
+              c.required_inward_n, c.soil_inward_n, c.sinkage_m, c.drive_slip);
 }
 
 // Single wheel (the soil bin: HMMWV wheel, 6.1 kN, towed at 1 m/s, free rolling) at slip angles
@@ -244,10 +266,13 @@ TEST(SoilTurningValidation, SandAndMudTurnLikeRigidGround) {
 // acceleration, but the drive needs little slip since the damping acts along the terrain normal
 // (issue 11; before, a front-arc drag of ~1 kN per wheel kept the drive slip at 0.3-0.5 and the
 // wheels spun at 3 m/s, R > 4 x rigid). Asserted: at 1, 2 and 3 m/s, steering 0.5 and full lock,
-// R within 10 % of rigid, growing with speed at full lock; at 2 m/s the soil force towards the
-// centre equals m v^2 / R within 5 %. The averages are taken over the last 6 s of 16 s: over a
-// 2-s window the balance moved by +-5 % with rounding-level changes elsewhere (issue 24's
-// physics-adapter changes), while over 6 s it is stable (1 and 3 m/s balance within 1 %).
+// R within 10 % of rigid, growing with speed at full lock; the soil force towards the centre
+// within 5 % of the inward force the centre of mass needs (m a, measured), at every speed; and
+// at 3 m/s, where the circle is steady (drive slip < 0.1), within 5 % of m v^2 / R. At 2 m/s the
+// circle is not steady: the P speed controller's drive-slip bursts (slip ~0.4 every ~1.5 s) make
+// the yaw rate swing by +-17 %, so m v w of the reference point is 4-6 % above the force the
+// vehicle's centre of mass actually needs (issue 24 measured it: soil 426 N = m a 426 N, m v^2/R
+// 453 N). Averages over the last 6 s of 16 s.
 TEST(SoilTurningValidation, SnowTurnsNearlyLikeRigidGround) {
   for (double steering : {0.5, 1.0}) {
     const Circle rigid = SteadyTurn(SurfaceClass::kConcrete, steering, 1.0, 12.0, 2.0);
@@ -262,7 +287,9 @@ TEST(SoilTurningValidation, SnowTurnsNearlyLikeRigidGround) {
       if (steering == 1.0) {
         EXPECT_GT(c.radius_m, previous - 0.01) << speed;
       }
-      if (speed == 2.0) {
+      EXPECT_NEAR(c.soil_inward_n, c.required_inward_n, 0.05 * c.required_inward_n) << speed;
+      if (speed == 3.0) {
+        EXPECT_LT(c.drive_slip, 0.1);
         EXPECT_NEAR(c.soil_inward_n, c.centripetal_n, 0.05 * c.centripetal_n);
       }
       previous = c.radius_m;

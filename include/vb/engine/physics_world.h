@@ -2,7 +2,7 @@
 // to rigid and articulated bodies through this class, in vb types; no Bullet type escapes.
 //
 // What Bullet does for vb: articulated vehicles (btMultiBody, Featherstone) and their constraint
-// solver: joint limits, implicit joint motors (brakes, steering) and the body-body contacts that
+// solver: joint limits, implicit joint motors (brakes) and the body-body contacts that
 // vb generates itself each step (AddContact: chassis against the terrain and the obstacles, wheels
 // against the obstacles; terrain/body_contact.h), solved as non-penetration and Coulomb friction
 // constraints. What it does NOT do: collision detection (Bullet's broadphase, contact caches and
@@ -18,7 +18,12 @@
 
 namespace vb::engine {
 
-enum class JointType { kRevolute, kPrismatic };
+// kPrescribedRevolute: a revolute joint whose angle is set from outside every step
+// (SetPrescribedJoint: steering, as the original's kinematic rack), not integrated: it adds no
+// degree of freedom and no constraint row to the dynamics, the link rides rigidly on its parent
+// at the angle set. Its rate enters the read-out velocities of the link and its descendants
+// (LinkPointVelocity, LinkAngularVelocity, JointVelocity), not the dynamics' momentum.
+enum class JointType { kRevolute, kPrismatic, kPrescribedRevolute };
 
 // Base body of an articulated system. Its frame is the body's centre of mass frame.
 struct MultiBodyBaseSpec {
@@ -36,7 +41,8 @@ struct MultiBodyLinkSpec {
   Vec3 joint_to_com_L = Vec3::Zero();         // from joint pivot to this link's COM, link frame
   double mass_kg = 1.0;
   Vec3 inertia_kgm2 = Vec3::Ones();
-  // Optional joint limits (prismatic: m; revolute: rad); lower > upper means none.
+  // Optional joint limits (prismatic: m; revolute: rad); lower > upper means none. Not allowed
+  // on a prescribed joint.
   double limit_lower = 1.0;
   double limit_upper = -1.0;
 };
@@ -69,7 +75,7 @@ struct MultiBodyState {
   Quat base_rotation = Quat::Identity();
   Vec3 base_velocity_W = Vec3::Zero();
   Vec3 base_angular_velocity_W = Vec3::Zero();
-  std::vector<double> q;      // joint coordinates, one per link
+  std::vector<double> q;      // joint coordinates, one per link (prescribed joints included)
   std::vector<double> qdot;
 };
 
@@ -90,6 +96,9 @@ class PhysicsWorld {
 
   // Sets the initial joint coordinates (after AddMultiBody, before the first Step).
   void SetJointPosition(MultiBodyId mb, int link, double q);
+  // Angle q (rad) and rate qdot (rad/s) of a kPrescribedRevolute joint, for the next Step and the
+  // read-out until then; persistent until changed. Part of the state (GetState/SetState).
+  void SetPrescribedJoint(MultiBodyId mb, int link, double q, double qdot);
 
   // Forces for the next Step only (cleared after it). World-frame force applied at a world point.
   void ApplyLinkForce(MultiBodyId mb, int link, const Vec3& force_W, const Vec3& point_W);
@@ -102,7 +111,8 @@ class PhysicsWorld {
   // creep: drive the joint velocity to target_velocity with at most max_force (N or N·m).
   // A max_force of 0 disables the motor. Persistent until changed.
   void SetJointVelocityMotor(MultiBodyId mb, int link, double target_velocity, double max_force);
-  // Stiff position servo (steering): drives q to target with a critically damped implicit motor.
+  // Stiff position servo: drives q to target with a critically damped implicit motor (rigid
+  // suspensions hold their slider with it).
   void SetJointPositionMotor(MultiBodyId mb, int link, double target_q, double max_force);
 
   // State read-out (valid after AddMultiBody and after every Step).

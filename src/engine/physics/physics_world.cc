@@ -60,6 +60,13 @@ struct PhysicsWorld::Impl {
     std::vector<std::unique_ptr<btMultiBodyLinkCollider>> link_colliders;
     std::vector<std::unique_ptr<btMultiBodyConstraint>> limits;
     std::vector<std::unique_ptr<btMultiBodyJointMotor>> motors;  // one per link, lazily made
+    // Prescribed joints (JointType::kPrescribedRevolute): Bullet fixed links whose rotation from
+    // the parent is rewritten by SetPrescribedJoint. Per link: whether prescribed, the axis in
+    // the parent frame, the angle and the rate (both unused for other links).
+    std::vector<char> prescribed;
+    std::vector<btVector3> prescribed_axis_P;
+    std::vector<double> prescribed_q, prescribed_qdot;
+    bool any_prescribed_rate = false;
     // Link kinematics of the current state in the world frame, computed for all links at once on
     // the first request after a change (the vehicle reads each wheel's pose and point velocities
     // several times per step; walking the chain per request was the costliest read-out).
@@ -68,12 +75,15 @@ struct PhysicsWorld::Impl {
     mutable btAlignedObjectArray<btQuaternion> link_world_to_local;  // index 0 = base
     mutable btAlignedObjectArray<btVector3> link_origin_W;           // link COM, index 0 = base
     mutable std::vector<Pose> link_pose;                             // index = link
-    mutable bool poses_valid = false;
+    // Links from first_stale_pose on are to be recomputed (-1: the base too; a changed
+    // prescribed joint makes only its own link and those after it stale).
+    mutable int first_stale_pose = -1;
     mutable btAlignedObjectArray<btVector3> omega, vel;              // link frames
     mutable btAlignedObjectArray<btVector3> omega_W, vel_W;          // world frame
+    mutable btAlignedObjectArray<btVector3> d_omega_W, d_vel_W;      // prescribed rates' share
     mutable bool velocities_valid = false;
     void Invalidate() const {
-      poses_valid = false;
+      first_stale_pose = -1;
       velocities_valid = false;
     }
     // Scratch of forwardKinematics.
@@ -97,11 +107,13 @@ struct PhysicsWorld::Impl {
     return bodies[id];
   }
   void RefreshPoses(const Body& b) const {
-    if (b.poses_valid) return;
     const btMultiBody* mb = b.mb.get();
-    b.link_world_to_local[0] = mb->getWorldToBaseRot();
-    b.link_origin_W[0] = mb->getBasePos();
-    for (int k = 0; k < mb->getNumLinks(); ++k) {
+    if (b.first_stale_pose >= mb->getNumLinks()) return;
+    if (b.first_stale_pose < 0) {
+      b.link_world_to_local[0] = mb->getWorldToBaseRot();
+      b.link_origin_W[0] = mb->getBasePos();
+    }
+    for (int k = std::max(0, b.first_stale_pose); k < mb->getNumLinks(); ++k) {
       const int parent = mb->getParent(k);
       const btQuaternion w2l = mb->getParentToLocalRot(k) * b.link_world_to_local[parent + 1];
       b.link_world_to_local[k + 1] = w2l;
@@ -111,7 +123,7 @@ struct PhysicsWorld::Impl {
       pose.position = FromBt(b.link_origin_W[k + 1]);
       pose.rotation = FromBt(w2l.inverse()).normalized();
     }
-    b.poses_valid = true;
+    b.first_stale_pose = mb->getNumLinks();
   }
   void RefreshVelocities(const Body& b) const {
     if (b.velocities_valid) return;
@@ -122,10 +134,39 @@ struct PhysicsWorld::Impl {
       b.omega_W[k] = quatRotate(local_to_world, b.omega[k]);
       b.vel_W[k] = quatRotate(local_to_world, b.vel[k]);
     }
+    if (b.any_prescribed_rate) AddPrescribedRates(b);
     b.velocities_valid = true;
+  }
+  // Bullet's fixed links move with their parent only: add what the prescribed joints' rates give
+  // each link, one pass down the tree (parent before child), as a revolute joint's rate would.
+  static void AddPrescribedRates(const Body& b) {
+    const btMultiBody* mb = b.mb.get();
+    b.d_omega_W[0].setZero();
+    b.d_vel_W[0].setZero();
+    for (int k = 0; k < mb->getNumLinks(); ++k) {
+      const int p = mb->getParent(k) + 1;
+      const btVector3 lever = b.link_origin_W[k + 1] - b.link_origin_W[p];
+      btVector3 dw = b.d_omega_W[p];
+      btVector3 dv = b.d_vel_W[p] + dw.cross(lever);
+      if (b.prescribed[static_cast<size_t>(k)] && b.prescribed_qdot[static_cast<size_t>(k)] != 0.0) {
+        const btQuaternion parent_to_world = b.link_world_to_local[p].inverse();
+        const btVector3 w = quatRotate(parent_to_world, b.prescribed_axis_P[static_cast<size_t>(k)]) *
+                            b.prescribed_qdot[static_cast<size_t>(k)];
+        // about the joint's pivot: parent COM + e (parent frame)
+        const btVector3 pivot_W =
+            b.link_origin_W[p] + quatRotate(parent_to_world, mb->getLink(k).m_eVector);
+        dw += w;
+        dv += w.cross(b.link_origin_W[k + 1] - pivot_W);
+      }
+      b.d_omega_W[k + 1] = dw;
+      b.d_vel_W[k + 1] = dv;
+      b.omega_W[k + 1] += dw;
+      b.vel_W[k + 1] += dv;
+    }
   }
   btMultiBodyJointMotor* Motor(MultiBodyId id, int link) {
     Body& b = Get(id);
+    VB_DEMAND(link >= 0 && link < b.mb->getNumLinks() && !b.prescribed[static_cast<size_t>(link)]);
     if (!b.motors[link]) {
       b.motors[link] = std::make_unique<btMultiBodyJointMotor>(b.mb.get(), link, 0.0, 0.0);
       world.addMultiBodyConstraint(b.motors[link].get());
@@ -179,7 +220,11 @@ MultiBodyId PhysicsWorld::AddMultiBody(const MultiBodyBaseSpec& base,
   for (int i = 0; i < n; ++i) {
     const MultiBodyLinkSpec& l = links[i];
     VB_DEMAND(l.parent < i);
-    if (l.joint == JointType::kRevolute) {
+    if (l.joint == JointType::kPrescribedRevolute) {
+      VB_DEMAND(l.limit_lower > l.limit_upper);
+      mb->setupFixed(i, l.mass_kg, ToBt(l.inertia_kgm2), l.parent, btQuaternion::getIdentity(),
+                     ToBt(l.parent_com_to_joint_P), ToBt(l.joint_to_com_L));
+    } else if (l.joint == JointType::kRevolute) {
       mb->setupRevolute(i, l.mass_kg, ToBt(l.inertia_kgm2), l.parent, btQuaternion::getIdentity(),
                         ToBt(l.axis_P), ToBt(l.parent_com_to_joint_P), ToBt(l.joint_to_com_L),
                         /*disableParentCollision=*/true);
@@ -227,6 +272,15 @@ MultiBodyId PhysicsWorld::AddMultiBody(const MultiBodyBaseSpec& base,
   mb->forwardKinematics(body.world_to_local, body.local_origin);
   mb->updateCollisionObjectWorldTransforms(body.world_to_local, body.local_origin);
   body.motors.resize(n);
+  body.prescribed.assign(static_cast<size_t>(n), 0);
+  body.prescribed_axis_P.resize(n);
+  body.prescribed_q.assign(static_cast<size_t>(n), 0.0);
+  body.prescribed_qdot.assign(static_cast<size_t>(n), 0.0);
+  for (int i = 0; i < n; ++i) {
+    if (links[i].joint != JointType::kPrescribedRevolute) continue;
+    body.prescribed[static_cast<size_t>(i)] = 1;
+    body.prescribed_axis_P[i] = ToBt(links[i].axis_P.normalized());
+  }
   body.link_world_to_local.resize(n + 1);
   body.link_origin_W.resize(n + 1);
   body.link_pose.resize(static_cast<size_t>(n));
@@ -234,20 +288,58 @@ MultiBodyId PhysicsWorld::AddMultiBody(const MultiBodyBaseSpec& base,
   body.vel.resize(n + 1);
   body.omega_W.resize(n + 1);
   body.vel_W.resize(n + 1);
+  body.d_omega_W.resize(n + 1);
+  body.d_vel_W.resize(n + 1);
   impl_->bodies.push_back(std::move(body));
   return id;
 }
 
+namespace {
+
+// Sets a prescribed joint's angle and rate on its Bullet fixed link (kinematic caches included;
+// the caller refreshes the world transforms when it needs them).
+void SetPrescribed(btMultiBody* mb, int link, const btVector3& axis_P, double q, double qdot,
+                   std::vector<double>* qs, std::vector<double>* qdots) {
+  btMultibodyLink& l = mb->getLink(link);
+  // a revolute joint at angle q rotates parent-frame vectors into its frame by -q (Bullet)
+  l.m_zeroRotParentToThis = btQuaternion(axis_P, -q);
+  l.updateCacheMultiDof();
+  (*qs)[static_cast<size_t>(link)] = q;
+  (*qdots)[static_cast<size_t>(link)] = qdot;
+}
+
+}  // namespace
+
+void PhysicsWorld::SetPrescribedJoint(MultiBodyId id, int link, double q, double qdot) {
+  Impl::Body& b = impl_->Get(id);
+  VB_DEMAND(link >= 0 && link < b.mb->getNumLinks() && b.prescribed[static_cast<size_t>(link)]);
+  const size_t k = static_cast<size_t>(link);
+  if (q == b.prescribed_q[k] && qdot == b.prescribed_qdot[k]) return;
+  // a link's descendants come after it: only those poses change (children have larger indices)
+  if (q != b.prescribed_q[k]) b.first_stale_pose = std::min(b.first_stale_pose, link);
+  SetPrescribed(b.mb.get(), link, b.prescribed_axis_P[link], q, qdot, &b.prescribed_q,
+                &b.prescribed_qdot);
+  b.any_prescribed_rate = false;
+  for (size_t i = 0; i < b.prescribed.size(); ++i)
+    if (b.prescribed[i] && b.prescribed_qdot[i] != 0.0) b.any_prescribed_rate = true;
+  b.velocities_valid = false;
+}
+
 void PhysicsWorld::SetJointPosition(MultiBodyId id, int link, double q) {
   Impl::Body& b = impl_->Get(id);
-  b.mb->setJointPos(link, q);
+  if (b.prescribed[static_cast<size_t>(link)])
+    SetPrescribed(b.mb.get(), link, b.prescribed_axis_P[link], q, 0.0, &b.prescribed_q,
+                  &b.prescribed_qdot);
+  else
+    b.mb->setJointPos(link, q);
   b.mb->forwardKinematics(b.world_to_local, b.local_origin);
   b.mb->updateCollisionObjectWorldTransforms(b.world_to_local, b.local_origin);
   b.Invalidate();
 }
 
 MultiBodyState PhysicsWorld::GetState(MultiBodyId id) const {
-  const btMultiBody* mb = impl_->Get(id).mb.get();
+  const Impl::Body& b = impl_->Get(id);
+  const btMultiBody* mb = b.mb.get();
   MultiBodyState s;
   s.base_position_W = FromBt(mb->getBasePos());
   s.base_rotation = FromBt(mb->getWorldToBaseRot());   // stored as is (world-to-base)
@@ -256,8 +348,9 @@ MultiBodyState PhysicsWorld::GetState(MultiBodyId id) const {
   s.q.resize(static_cast<size_t>(mb->getNumLinks()));
   s.qdot.resize(static_cast<size_t>(mb->getNumLinks()));
   for (int i = 0; i < mb->getNumLinks(); ++i) {
-    s.q[static_cast<size_t>(i)] = mb->getJointPos(i);
-    s.qdot[static_cast<size_t>(i)] = mb->getJointVel(i);
+    const size_t k = static_cast<size_t>(i);
+    s.q[k] = b.prescribed[k] ? b.prescribed_q[k] : mb->getJointPos(i);
+    s.qdot[k] = b.prescribed[k] ? b.prescribed_qdot[k] : mb->getJointVel(i);
   }
   return s;
 }
@@ -270,9 +363,17 @@ void PhysicsWorld::SetState(MultiBodyId id, const MultiBodyState& s) {
   mb->setWorldToBaseRot(ToBt(s.base_rotation));
   mb->setBaseVel(ToBt(s.base_velocity_W));
   mb->setBaseOmega(ToBt(s.base_angular_velocity_W));
+  b.any_prescribed_rate = false;
   for (int i = 0; i < mb->getNumLinks(); ++i) {
-    mb->setJointPos(i, s.q[static_cast<size_t>(i)]);
-    mb->setJointVel(i, s.qdot[static_cast<size_t>(i)]);
+    const size_t k = static_cast<size_t>(i);
+    if (b.prescribed[k]) {
+      SetPrescribed(mb, i, b.prescribed_axis_P[i], s.q[k], s.qdot[k], &b.prescribed_q,
+                    &b.prescribed_qdot);
+      if (s.qdot[k] != 0.0) b.any_prescribed_rate = true;
+    } else {
+      mb->setJointPos(i, s.q[k]);
+      mb->setJointVel(i, s.qdot[k]);
+    }
   }
   mb->clearForcesAndTorques();
   mb->forwardKinematics(b.world_to_local, b.local_origin);
@@ -361,11 +462,15 @@ Vec3 PhysicsWorld::LinkAngularVelocity(MultiBodyId id, int link) const {
 }
 
 double PhysicsWorld::JointPosition(MultiBodyId id, int link) const {
-  return impl_->Get(id).mb->getJointPos(link);
+  const Impl::Body& b = impl_->Get(id);
+  if (b.prescribed[static_cast<size_t>(link)]) return b.prescribed_q[static_cast<size_t>(link)];
+  return b.mb->getJointPos(link);
 }
 
 double PhysicsWorld::JointVelocity(MultiBodyId id, int link) const {
-  return impl_->Get(id).mb->getJointVel(link);
+  const Impl::Body& b = impl_->Get(id);
+  if (b.prescribed[static_cast<size_t>(link)]) return b.prescribed_qdot[static_cast<size_t>(link)];
+  return b.mb->getJointVel(link);
 }
 
 void PhysicsWorld::AddContact(const ContactConstraint& contact) {
@@ -446,7 +551,9 @@ bool PhysicsWorld::StateIsFinite() const {
     for (int k = 0; k < 3; ++k)
       if (!std::isfinite(p[k]) || !std::isfinite(v[k]) || !std::isfinite(w[k])) return false;
     for (int i = 0; i < mb->getNumLinks(); ++i)
-      if (!std::isfinite(mb->getJointPos(i)) || !std::isfinite(mb->getJointVel(i))) return false;
+      if (!b.prescribed[static_cast<size_t>(i)] &&
+          (!std::isfinite(mb->getJointPos(i)) || !std::isfinite(mb->getJointVel(i))))
+        return false;
   }
   return true;
 }
