@@ -7,7 +7,8 @@
 // setup). One trial at a time on one core.
 // Besides the wall-clock RTF it reports the CPU-time RTF (simulated s / process CPU s): on the
 // shared 2-core machine other jobs stretch wall time, not CPU time.
-//   usage: vb_bench_episode [TASK] [RUNS] [VEHICLE] [STEP_S]
+//   usage: vb_bench_episode [TASK] [RUNS] [VEHICLE] [STEP_S] [SOIL_FILE]
+// SOIL_FILE: the soil parameters of deformable worlds (default data/soils/verti_bench.yaml).
 #include <algorithm>
 #include <ctime>
 #include <cstdio>
@@ -37,8 +38,11 @@ int main(int argc, char** argv) {
   const int runs = argc > 2 ? std::atoi(argv[2]) : 5;
   const std::string vehicle = argc > 3 ? argv[3] : "hmmwv";
   const double step_s = argc > 4 ? std::atof(argv[4]) : 0.005;
+  const std::string soil_path =
+      argc > 5 ? argv[5] : VB_SOURCE_DIR "/data/soils/verti_bench.yaml";
   if (runs < 1 || !(step_s > 0.0)) {
-    std::fprintf(stderr, "usage: vb_bench_episode [TASK] [RUNS >= 1] [VEHICLE] [STEP_S > 0]\n");
+    std::fprintf(stderr,
+                 "usage: vb_bench_episode [TASK] [RUNS >= 1] [VEHICLE] [STEP_S > 0] [SOIL_FILE]\n");
     return 2;
   }
   try {
@@ -46,7 +50,7 @@ int main(int argc, char** argv) {
     const vb::vehicles::VehicleParams params =
         vb::io::LoadVehicle(VB_SOURCE_DIR "/data/vehicles/" + vehicle + ".yaml");
     const std::optional<vb::soil::SoilConfig> soil =
-        vb::io::LoadSoilIfNeeded(task, VB_SOURCE_DIR "/data/soils/verti_bench.yaml");
+        vb::io::LoadSoilIfNeeded(task, soil_path);
     std::printf("vb_bench_episode %s %d %s %g: %zu pairs x %d runs, PID, step %g s\n",
                 task_path.c_str(), runs, vehicle.c_str(), step_s, task.pairs.size(), runs, step_s);
 

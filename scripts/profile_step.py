@@ -9,6 +9,7 @@ by running it with --build of each (the instruction count of the same binary and
 repeatable; different builds may take different trajectories, hence "per step").
 
 usage: scripts/profile_step.py TASK [--pairs 2] [--build build] [--keep FILE] [--vehicle hmmwv]
+       [--soil FILE]
 """
 import argparse
 import os
@@ -57,6 +58,8 @@ def main():
     ap.add_argument("--build", default="build")
     ap.add_argument("--keep", help="keep the callgrind output in this file")
     ap.add_argument("--vehicle", default="hmmwv", help="data/vehicles/NAME.yaml")
+    ap.add_argument("--soil", help="soil file of deformable worlds (default: the bench's, "
+                    "data/soils/verti_bench.yaml)")
     a = ap.parse_args()
     bench = os.path.join(a.build, "bench", "vb_bench_episode")
     if not os.access(bench, os.X_OK):
@@ -66,7 +69,9 @@ def main():
         trimmed_task(a.task, a.pairs, task)
         out = a.keep or os.path.join(tmp, "callgrind.out")
         run = subprocess.run(["valgrind", "--tool=callgrind", "--callgrind-out-file=" + out,
-                              bench, task, "1", a.vehicle], capture_output=True, text=True)
+                              bench, task, "1", a.vehicle]
+                             + (["0.005", os.path.abspath(a.soil)] if a.soil else []),
+                             capture_output=True, text=True)
         if run.returncode != 0:
             sys.exit(run.stdout + run.stderr)
         m = re.search(r"(\d+) steps", run.stdout)

@@ -293,6 +293,9 @@ struct ScmSoil::Impl {
   }
 
   void Erode(const BulldozingParams& bp);
+  // TrackContact with the belt pressing every kStride-th node each way (1 or 2).
+  template <int kStride>
+  TrackSoilOutput Track(const SoilConfig& config, const TrackSoilInput& tr, double dt);
   void DepositOnRim(const Patch& patch, size_t begin, double volume);
   std::vector<double> room;
   std::vector<bool> full_scratch;
@@ -302,6 +305,9 @@ ScmSoil::ScmSoil(const terrain::Terrain& terrain, const SoilConfig& config)
     : config_(config), impl_(std::make_unique<Impl>(terrain)) {
   if (!(config_.grid_spacing_m > 0.0)) {
     throw InputError(config_.source, 0, "grid.spacing_m", "must be > 0");
+  }
+  if (config_.belt_node_stride != 1 && config_.belt_node_stride != 2) {
+    throw InputError(config_.source, 0, "belt_node_stride", "must be 1 or 2");
   }
   if (!(config_.default_wheel_mass_kg > 0.0) || !(config_.default_wheel_spin_inertia_kgm2 > 0.0)) {
     throw InputError(config_.source, 0, "stabilisation", "default wheel mass and inertia must be > 0");
@@ -590,7 +596,16 @@ void ScmSoil::Impl::DepositOnRim(const Patch& patch, size_t begin, double volume
 }
 
 TrackSoilOutput ScmSoil::TrackContact(const TrackSoilInput& tr, double dt) {
-  Impl& m = *impl_;
+  // The belt's node stride as a compile-time constant: the default (every node) scans exactly as
+  // before the coarse grid existed, with no per-node cost of it.
+  return config_.belt_node_stride == 2 ? impl_->Track<2>(config_, tr, dt)
+                                       : impl_->Track<1>(config_, tr, dt);
+}
+
+template <int kStride>
+TrackSoilOutput ScmSoil::Impl::Track(const SoilConfig& config, const TrackSoilInput& tr,
+                                     double dt) {
+  Impl& m = *this;
   TrackSoilOutput out;
   for (Vec3& f : out.point_force_W) f.setZero();
   const int n = std::clamp(tr.n_points, 0, kMaxTrackPoints);
@@ -599,8 +614,18 @@ TrackSoilOutput ScmSoil::TrackContact(const TrackSoilInput& tr, double dt) {
   double total_len = 0.0;
   for (int k = 0; k + 1 < n; ++k) total_len += (tr.points_W[k + 1] - tr.points_W[k]).norm();
   if (!(total_len > 0.0)) return out;
-  const double mass = tr.mass_kg > 0.0 ? tr.mass_kg : config_.default_wheel_mass_kg;
-  const double cell = m.dx * m.dx;
+  const double mass = tr.mass_kg > 0.0 ? tr.mass_kg : config.default_wheel_mass_kg;
+  // The belt's grid: every stride-th node each way, counted from the world's first node (so that
+  // a block of stride x stride nodes never straddles a tile: kTileSize is even), is pressed and
+  // stands for the block's cell, cell_w wide.
+  constexpr int stride = kStride;
+  const double cell_w = stride * m.dx;
+  const double cell = cell_w * cell_w;
+  auto align_up = [](int v, int base) {   // the first pressed index >= v
+    if (stride == 1) return v;
+    const int r = (v - base) % stride;
+    return r == 0 ? v : v + (r > 0 ? stride - r : -r);
+  };
   for (int k = 0; k + 1 < n; ++k) {
     const Vec3& a = tr.points_W[k];
     const Vec3& b = tr.points_W[k + 1];
@@ -620,7 +645,7 @@ TrackSoilOutput ScmSoil::TrackContact(const TrackSoilInput& tr, double dt) {
     const double soil_top = under.height_m + reach * std::sqrt(1.0 - nz * nz) / nz +
                             m.max_raise_m + 0.5 * m.dx;
     if (std::min(a.z(), b.z()) - half_w * std::abs(lat.z()) >= soil_top) continue;
-    const double ext = half_w + m.dx;
+    const double ext = half_w + cell_w;
     const int i_lo = static_cast<int>(std::ceil((std::min(a.x(), b.x()) - ext) / m.dx));
     const int i_hi = static_cast<int>(std::floor((std::max(a.x(), b.x()) + ext) / m.dx));
     const int j_lo = static_cast<int>(std::ceil((std::min(a.y(), b.y()) - ext) / m.dx));
@@ -641,13 +666,13 @@ TrackSoilOutput ScmSoil::TrackContact(const TrackSoilInput& tr, double dt) {
       ly = -ly;
     }
     const double lat_h = std::sqrt(std::max(1e-6, 1.0 - lat.z() * lat.z()));
-    const double top = soil_top + (half_w + m.dx) * std::abs(lat.z()) / lat_h;
+    const double top = soil_top + ext * std::abs(lat.z()) / lat_h;
     double t_lo = 0.0, t_hi = t_end;
     const double dz = b.z() - a.z();
     if (dz > 1e-12) t_hi = std::min(t_hi, (top - a.z()) / dz);
     if (dz < -1e-12) t_lo = std::max(t_lo, (top - a.z()) / dz);
     if (t_lo > t_hi) continue;
-    const double hw_scan = half_w + 0.5 * m.dx;
+    const double hw_scan = half_w + 0.5 * cell_w;
     // x - a.x within [lo, hi] where c0 + c1 (x - a.x) lies in [v_lo, v_hi]
     auto clip = [](double c0, double c1, double v_lo, double v_hi, double* lo, double* hi) {
       if (std::abs(c1) < 1e-12) {
@@ -662,6 +687,7 @@ TrackSoilOutput ScmSoil::TrackContact(const TrackSoilInput& tr, double dt) {
     // The covered-node test along a row (belt_row.h); locals: no reloads after push_back.
     BeltRow row;
     row.dx = m.dx;
+    row.cell_w = cell_w;
     row.ax = a.x();
     row.sx = sx;
     row.len2 = len2;
@@ -685,13 +711,14 @@ TrackSoilOutput ScmSoil::TrackContact(const TrackSoilInput& tr, double dt) {
     // it, so no node they skip could be a contact.
     const double z_slope = sx / len2 * dz + lx * tilt;
     m.hits.clear();
-    for (int j = j_lo; j <= j_hi; ++j) {
+    for (int j = align_up(j_lo, m.j_min); j <= j_hi; j += stride) {
       const double uy = j * m.dx - a.y();
       double lo = -1e300, hi = 1e300;
       clip(uy * sy / len2, sx / len2, t_lo, t_hi, &lo, &hi);
       clip(uy * ly, lx, -hw_scan, hw_scan, &lo, &hi);
       if (lo > hi) continue;
-      const int i0 = std::max(i_lo, CeilToInt((a.x() + lo) / m.dx - 1e-9));
+      const int i0 =
+          align_up(std::max(i_lo, CeilToInt((a.x() + lo) / m.dx - 1e-9)), i_min);
       const int i1 = std::min(i_hi, FloorToInt((a.x() + hi) / m.dx + 1e-9));
       if (i0 > i1) continue;
       // BeltBottomAt inlined along the row (t, l and the height are linear in x)
@@ -709,7 +736,7 @@ TrackSoilOutput ScmSoil::TrackContact(const TrackSoilInput& tr, double dt) {
         // allocates the tile), the other nodes by pointer offset.
         Node* base = nullptr;
         Tile* tile = nullptr;
-        for (; i <= chunk_end; ++i) {
+        for (; i <= chunk_end; i += stride) {
           double t = 0.0, l = 0.0, cover = 0.0;
           if (!row.Covers(i, &t, &l, &cover)) continue;
           base = m.AtInRow(grid_row, i, true, &tile);
@@ -731,9 +758,9 @@ TrackSoilOutput ScmSoil::TrackContact(const TrackSoilInput& tr, double dt) {
           i = chunk_end + 1;
           continue;
         }
-        const double z_step = dx * z_slope;
+        const double z_step = stride * dx * z_slope;
         double z_quick = z0 - kScanMargin_m;   // at node i
-        for (; i <= chunk_end; ++i, z_quick += z_step) {
+        for (; i <= chunk_end; i += stride, z_quick += z_step) {
           Node* node = base + (i - base_i);  // beyond i_max: a rigid node (slot -1), skipped
           if (node->slot < 0) continue;
           if (node->plastic_m >= 0.0 && z_quick >= node->level0_m) continue;
@@ -751,7 +778,7 @@ TrackSoilOutput ScmSoil::TrackContact(const TrackSoilInput& tr, double dt) {
       lat_lo = std::min(lat_lo, h.lat);
       lat_hi = std::max(lat_hi, h.lat);
     }
-    const double bb = std::max(m.dx, std::min(lat_hi - lat_lo + m.dx, 2.0 * half_w));
+    const double bb = std::max(cell_w, std::min(lat_hi - lat_lo + cell_w, 2.0 * half_w));
     const double seg_mass = mass * seg_len / total_len;
     double k_total = 0.0, c_total = 0.0;
     for (const Impl::Hit& h : m.hits) {
@@ -809,6 +836,30 @@ TrackSoilOutput ScmSoil::TrackContact(const TrackSoilInput& tr, double dt) {
       out.point_sinkage_m[k] = std::max(out.point_sinkage_m[k], sink);
       out.point_sinkage_m[k + 1] = std::max(out.point_sinkage_m[k + 1], sink);
       m.contacts.push_back({h.i, h.j, flow, h.node});
+      if constexpr (stride == 2) {
+        // The node stands for its 2 x 2 block (+i, +j, +i+j: the same tile). The block's other
+        // nodes under the belt (|l| within the half width plus half a grid cell, as a pressed
+        // node at stride 1) sink with it: lowered to its level (plus the difference of their
+        // initial terrain levels, so that a slope stays a slope) if above it. The rut is a rut
+        // at the grid's resolution, and the soil they displace goes to the rim with the rest.
+        Node* const mates[3] = {&nd + 1, &nd + kTileSize, &nd + kTileSize + 1};
+        const double mate_l[3] = {h.lat + lx * dx, h.lat + ly * dx, h.lat + (lx + ly) * dx};
+        constexpr int kMi[3] = {1, 0, 1}, kMj[3] = {0, 1, 1};
+        const double level_rep = Level(nd);
+        for (int q = 0; q < 3; ++q) {
+          Node& mt = *mates[q];
+          if (mt.slot < 0 || !(std::abs(mate_l[q]) < half_w + 0.5 * dx)) continue;
+          const double target = level_rep + (mt.base_m - nd.base_m);
+          const double plastic = (mt.level0_m - target) * mt.cos_slope;
+          double mate_flow = 0.0;
+          if (plastic > mt.plastic_m) {
+            mate_flow = (plastic - mt.plastic_m) / mt.cos_slope;
+            mt.plastic_m = plastic;
+          }
+          mt.contact_step = m.step;
+          m.contacts.push_back({h.i + kMi[q], h.j + kMj[q], mate_flow, &mt});
+        }
+      }
     }
     Impl::Patch patch{begin, m.contacts.size(), a, lat, 0.0, half_w};
     patch.belt = true;

@@ -12,10 +12,13 @@ namespace {
 constexpr double kDx = 0.05;
 
 // A row of the grid under the horizontal segment from (ax, ay) to (bx, by), belt half width hw.
-BeltRow RowFor(double ax, double ay, double bx, double by, double hw, int j, double t_end) {
+// stride: the belt presses every stride-th node each way, each standing for a cell stride dx wide.
+BeltRow RowFor(double ax, double ay, double bx, double by, double hw, int j, double t_end,
+               int stride = 1) {
   BeltRow row;
   const double sx = bx - ax, sy = by - ay;
   row.dx = kDx;
+  row.cell_w = stride * kDx;
   row.ax = ax;
   row.sx = sx;
   row.len2 = sx * sx + sy * sy;
@@ -23,7 +26,7 @@ BeltRow RowFor(double ax, double ay, double bx, double by, double hw, int j, dou
   row.lx = -sy / len;
   const double ly = sx / len;
   row.half_w = hw;
-  row.hw_scan = hw + 0.5 * kDx;
+  row.hw_scan = hw + 0.5 * row.cell_w;
   row.t_end = t_end;
   const double uy = j * kDx - ay;
   row.t_row = uy * sy / row.len2;
@@ -53,6 +56,29 @@ TEST(BeltRowTest, CoversAcrossTheBeltSumToItsWidth) {
     EXPECT_NEAR(sum * kDx, 2.0 * hw, 1e-12) << "offset " << offset;
     EXPECT_GE(covered, 8);   // 0.38 m over 0.05 m cells: 8 or 9 nodes
     EXPECT_LE(covered, 9);
+  }
+}
+
+// The belt's coarse grid (every second node each way, each carrying a cell 2 dx wide): the
+// covers of the pressed nodes across the belt still add up to its width.
+TEST(BeltRowTest, CoarseCoversAcrossTheBeltSumToItsWidth) {
+  const double hw = 0.19;
+  for (double offset = 0.0; offset < 2.0 * kDx; offset += kDx / 13.0) {
+    const BeltRow row = RowFor(offset, -1.0, offset, 1.0, hw, 4, 1.0, 2);
+    double sum = 0.0;
+    int covered = 0;
+    for (int i = -20; i <= 20; i += 2) {
+      double t = 0.0, l = 0.0, cover = 0.0;
+      if (!row.Covers(i, &t, &l, &cover)) continue;
+      ++covered;
+      EXPECT_GT(cover, 0.0);
+      EXPECT_LE(cover, 1.0);
+      EXPECT_LE(std::abs(l), row.hw_scan);
+      sum += cover;
+    }
+    EXPECT_NEAR(sum * 2.0 * kDx, 2.0 * hw, 1e-12) << "offset " << offset;
+    EXPECT_GE(covered, 4);   // 0.38 m over 0.1 m cells: 4 or 5 nodes
+    EXPECT_LE(covered, 5);
   }
 }
 

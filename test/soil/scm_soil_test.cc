@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 
 #include "io/soil_io.h"
@@ -171,6 +172,57 @@ TEST(ScmSoilTest, UndescribedSoilClassIsAnInputError) {
     EXPECT_EQ(e.key(), "snow");
     EXPECT_NE(std::string(e.what()).find("does not describe"), std::string::npos) << e.what();
   }
+}
+
+// A straight belt (2 m x 0.38 m, across the grid's columns off a node line) pressed into sand
+// quasi-statically, 1 mm per step to 20 mm: the track contact's coarse grid (belt_node_stride 2:
+// every second node each way, carrying four cells) bears what the full grid does, and leaves a
+// rut at the grid's resolution: every node under the belt has sunk, the odd ones as the even.
+TEST(ScmSoilTest, BeltCoarseGridBearsAsTheFullGridAndLeavesARut) {
+  const terrain::TaskSpec task =
+      test::PlaneTask(128.0, 0.0, 0.0, 0.0, terrain::SurfaceClass::kSand);
+  const terrain::Terrain ground(task);
+  constexpr double kY = 0.013, kHw = 0.19;
+  double fz[3] = {0.0, 0.0, 0.0};
+  for (int stride : {1, 2}) {
+    SoilConfig config = Config();
+    config.belt_node_stride = stride;
+    ScmSoil soil(ground, config);
+    TrackSoilInput in;
+    in.n_points = 2;
+    in.width_m = 2.0 * kHw;
+    in.lateral_W = Vec3::UnitY();
+    in.mass_kg = 500.0;
+    TrackSoilOutput out;
+    for (double z = 0.001; z >= -0.020 - 1e-12; z -= 0.001) {
+      in.points_W[0] = Vec3(-1.0, kY, z);
+      in.points_W[1] = Vec3(1.0, kY, z);
+      out = soil.TrackContact(in, 0.005);
+      soil.EndStep(0.005);
+    }
+    fz[stride] = out.point_force_W[0].z() + out.point_force_W[1].z();
+    // the rut: every node well under the belt (not its edges or ends) has sunk below the belt's
+    // elastic contact level, within rounding of one another
+    const double dx = soil.spacing_m();
+    double lo = 1e300, hi = -1e300;
+    for (int j = static_cast<int>(std::ceil((kY - kHw + dx) / dx));
+         j * dx <= kY + kHw - dx; ++j) {
+      for (int i = -15; i <= 15; ++i) {
+        const double h = soil.SurfaceHeight(i * dx, j * dx);
+        lo = std::min(lo, h);
+        hi = std::max(hi, h);
+      }
+    }
+    std::printf("stride %d: vertical force %.0f N, rut levels %.5f .. %.5f m\n", stride,
+                fz[stride], lo, hi);
+    EXPECT_LT(hi, -0.005) << "stride " << stride;
+    EXPECT_NEAR(lo, hi, 1e-3) << "stride " << stride;
+    // beside the belt the soil has not sunk (it took the displaced soil)
+    EXPECT_GE(soil.SurfaceHeight(0.0, kY + kHw + 2.0 * dx), 0.0);
+    EXPECT_GE(soil.SurfaceHeight(0.0, kY - kHw - 2.0 * dx), 0.0);
+  }
+  EXPECT_GT(fz[1], 1000.0);
+  EXPECT_NEAR(fz[2], fz[1], 0.03 * fz[1]);
 }
 
 }  // namespace

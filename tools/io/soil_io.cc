@@ -63,11 +63,16 @@ soil::SoilConfig LoadSoil(const std::string& path) {
   soil::SoilConfig c;
   c.source = path;
 
-  const StrictMap grid = top.Required("grid").AsMap({"spacing_m"});
+  const StrictMap grid = top.Required("grid").AsMap({"spacing_m", "belt_node_stride"});
   const StrictNode spacing = grid.Required("spacing_m");
   c.grid_spacing_m = spacing.AsPositive();
   if (c.grid_spacing_m < 0.005 || c.grid_spacing_m > 0.5) {
     spacing.Fail("must be in [0.005, 0.5] m, got " + FormatDouble(c.grid_spacing_m));
+  }
+  if (grid.Has("belt_node_stride")) {
+    const StrictNode stride = grid.Required("belt_node_stride");
+    if (stride.AsInt() != 1 && stride.AsInt() != 2) stride.Fail("must be 1 or 2");
+    c.belt_node_stride = static_cast<int>(stride.AsInt());
   }
 
   const StrictMap bd = top.Required("bulldozing").AsMap(

@@ -37,6 +37,13 @@ struct BulldozingParams {
 struct SoilConfig {
   std::string source;                   // file it was loaded from (provenance, messages)
   double grid_spacing_m = 0.0;          // node spacing of the height grid
+  // A numerical setting of the track contact, not a soil property (soil file: grid.
+  // belt_node_stride, optional): a track's belt presses every belt_node_stride-th node in each
+  // direction, each pressed node carrying the cell of stride x stride nodes and lowering the
+  // block's other nodes under the belt to its level. 1 (the default): every node, as a wheel.
+  // 2: a quarter of the nodes, the M113's soil contact ~2x cheaper, but its static sinkage in
+  // mud 32 % above Bekker's instead of 17 % (docs/soil.md "The belt's coarse grid").
+  int belt_node_stride = 1;
   // Soil per deformable class, indexed by SoilSlot(class); empty = class not described.
   std::array<std::optional<SoilParams>, 3> classes;
   BulldozingParams bulldozing;
