@@ -370,6 +370,22 @@ TEST(EpisodeApiTest, TippingPastFortyFiveDegreesIsRecorded) {
   EXPECT_FALSE(flat.Result().tipped);
 }
 
+// The start drop scales with the world, as the original's (terrain + 1.0 m x scale factor):
+// the wheel bottoms start 0.5 m x scale above the ground (a 1/10 world's vehicle 5 cm).
+TEST(EpisodeApiTest, TheStartDropScalesWithTheWorld) {
+  const vehicles::VehicleParams vw = io::LoadVehicle(VB_SOURCE_DIR "/data/vehicles/vw.yaml");
+  for (const double scale : {1.0, 0.1}) {
+    const vehicles::VehicleParams& vp = scale == 1.0 ? Hmmwv() : vw;
+    terrain::TaskSpec task = FlatTask();
+    task.scale = scale;
+    Episode episode(task, vp);
+    episode.Reset(TrialSpec());
+    const double wheel_bottom_m = episode.vehicle_state().pose_W.position.z() + vp.axles[0].z_m -
+                                  vp.wheel.radius_m;
+    EXPECT_NEAR(wheel_bottom_m, EpisodeRules().start_height_m * scale, 1e-9) << scale;
+  }
+}
+
 TEST(EpisodeTest, StatusNames) {
   EXPECT_EQ(TrialStatusName(TrialStatus::kSuccess), "success");
   EXPECT_EQ(TrialStatusName(TrialStatus::kRollover), "rollover");

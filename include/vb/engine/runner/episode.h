@@ -65,7 +65,8 @@ struct EpisodeRules {
   double tipped_roll_rad = 45.0 * kPi / 180.0;  // TrialResult::tipped: |roll| ever above this
   double stuck_window_s = 10.0;
   double stuck_distance_m = 1.0;       // scaled by task.scale
-  double start_height_m = 0.5;         // drop height of the wheel bottoms above the terrain
+  double start_height_m = 0.5;         // drop height of the wheel bottoms above the terrain at
+                                       // scale 1 (times the task's scale)
   bool end_early = true;               // stop once the failure is certain
   // Reaching the goal radius ends the trial as success. Off only for data collection that is
   // not about the goal (random exploration, docs/datasets.md): it drives until a failure.
