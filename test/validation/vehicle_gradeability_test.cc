@@ -112,5 +112,56 @@ TEST(VehicleGradeability, SlopeLimitMatchesTheOriginalsRuns) {
   }
 }
 
+// Time to climb 30 m from rest (the original's protocol, ClimbsLikeTheReference); -1 if not
+// within 20 s.
+double SecondsToClimb30m(const vehicles::VehicleParams& p, double angle_rad, double mu) {
+  const double sx = std::tan(angle_rad);
+  test::VehicleSim sim(test::PlaneTask(128.0, sx, 0.0, mu), p,
+                       test::PoseOnPlane(-50.0, 0, sx, 0, 0, p.wheel.radius_m, 0.0));
+  vehicles::DriverInputs in;
+  in.braking = 1.0;
+  sim.Run(2.0, in);
+  const Vec3 p0 = sim.state().pose_W.position;
+  in.braking = 0.0;
+  in.throttle = 1.0;
+  for (int k = 1; k <= 4000; ++k) {
+    sim.Step(in);
+    if (sim.state().pose_W.position.x() - p0.x() > 30.0 * std::cos(angle_rad))
+      return k * test::kStep_s;
+  }
+  return -1.0;
+}
+
+// The original's times to 30 m up the slope (reference_chrono_runs.md, "Slopes"), which say
+// more than the pass/fail limit: below 30 deg at mu 0.9 the times follow the original's within
+// 11 %, so the climb's traction and engine match. On the steepest slopes both climbs are
+// traction-limited with the front wheels spinning (vb: front slip 0.85-0.95, the engine pinned
+// at 232-233 rad/s on the full-load map's falling edge, just under the 4th-to-5th upshift at
+// 233.1 rad/s), where the acceleration is the small difference of two large forces: at 30 deg
+// the thrust (4 mu N_front + clutch, 18.4 kN) exceeds the slope's pull (14.2 kN) by 30 %, so
+// ~9 % less front traction gives the original's 7.2 s. vb is faster there (NOT MET,
+// docs/validation.md): 30 deg mu 0.9 -20 %, 20 deg mu 0.5 -26 %; asserted only that vb is not
+// slower.
+TEST(VehicleGradeability, ClimbTimesFollowTheOriginalsRuns) {
+  const vehicles::VehicleParams p = test::Hmmwv();
+  struct Case {
+    double mu, deg, ref_s, tolerance;  // tolerance < 0: only "not slower than the original"
+  };
+  const Case cases[] = {{0.9, 15.0, 3.6, 0.11}, {0.9, 20.0, 4.2, 0.11}, {0.9, 25.0, 4.9, 0.11},
+                        {0.9, 28.0, 5.8, 0.11}, {0.9, 30.0, 7.2, -1.0}, {0.5, 15.0, 5.6, 0.11},
+                        {0.5, 20.0, 9.4, -1.0}};
+  for (const Case& c : cases) {
+    const double t = SecondsToClimb30m(p, c.deg * kDeg, c.mu);
+    std::printf("mu %.1f %4.1f deg: 30 m in %.2f s, the original %.1f s (%+.0f %%)\n", c.mu,
+                c.deg, t, c.ref_s, 100.0 * (t / c.ref_s - 1.0));
+    ASSERT_GT(t, 0.0) << c.mu << " " << c.deg;
+    if (c.tolerance > 0.0) {
+      EXPECT_NEAR(t / c.ref_s, 1.0, c.tolerance) << c.mu << " " << c.deg;
+    } else {
+      EXPECT_LE(t, c.ref_s) << c.mu << " " << c.deg;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace vb
