@@ -122,13 +122,14 @@ void GroundContacts(const engine::ConvexShape& body, const Terrain& ground, doub
   const int ci1 = std::min(g.cols - 1, static_cast<int>(std::floor((body.aabb_max.x() - west) / dx)));
   const int ri0 = std::max(0, static_cast<int>(std::ceil((north - body.aabb_max.y()) / dy)));
   const int ri1 = std::min(g.rows - 1, static_cast<int>(std::floor((north - body.aabb_min.y()) / dy)));
+  int hint = -1;
   for (int r = ri0; r <= ri1; ++r) {
     for (int c = ci0; c <= ci1; ++c) {
       const Vec3 v(west + c * dx, north - r * dy, g.At(r, c));
       if (v.z() <= body.aabb_min.z()) continue;
       int face = 0;
-      const double d = body.SignedDistance(v, &face);
-      if (d >= 0.0) continue;
+      double d = 0.0;
+      if (!body.Inside(v, &d, &face, &hint)) continue;
       const engine::ConvexShape::Face& f = body.faces[static_cast<size_t>(face)];
       const SurfacePoint sp = ground.Query(v.x(), v.y());
       BodyContact k;
@@ -143,24 +144,47 @@ void GroundContacts(const engine::ConvexShape& body, const Terrain& ground, doub
   ReduceContacts(cand, max_contacts, &scratch->taken, out);
 }
 
+namespace {
+
+// True when a face plane of `a` has every vertex of `b` at least kSeparatedBy_m outside it: the two
+// convex shapes are apart (a separating plane), so no point of either is inside the other.
+bool SeparatedByAFaceOf(const engine::ConvexShape& a, const engine::ConvexShape& b) {
+  for (const engine::ConvexShape::Face& f : a.faces) {
+    bool all_outside = true;
+    for (const Vec3& v : b.vertices) {
+      if (f.normal.dot(v) - f.offset < kSeparatedBy_m) {
+        all_outside = false;
+        break;
+      }
+    }
+    if (all_outside) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
 void ObstacleContacts(const engine::ConvexShape& body, const ObstacleField& field,
                       double body_friction, int max_per_obstacle, ContactScratch* scratch,
                       std::vector<BodyContact>* out) {
   field.Overlapping(body.aabb_min, body.aabb_max, &scratch->obstacles);
   for (int index : scratch->obstacles) {
     const Obstacle& o = field.obstacles()[static_cast<size_t>(index)];
+    // boxes overlapping is common (a rotated body's box is loose); shapes touching is not
+    if (SeparatedByAFaceOf(o.shape, body) || SeparatedByAFaceOf(body, o.shape)) continue;
     std::vector<BodyContact>& cand = scratch->candidates;
     cand.clear();
     const double mu = std::min(body_friction, o.friction);
     // body samples inside the obstacle
+    int hint = -1;
     for (const Vec3& p : body.samples) {
       if ((p.array() < o.shape.aabb_min.array()).any() ||
           (p.array() > o.shape.aabb_max.array()).any()) {
         continue;
       }
       int face = 0;
-      const double d = o.shape.SignedDistance(p, &face);
-      if (d >= 0.0) continue;
+      double d = 0.0;
+      if (!o.shape.Inside(p, &d, &face, &hint)) continue;
       BodyContact k;
       k.point_W = p;
       k.normal_W = o.shape.faces[static_cast<size_t>(face)].normal;
@@ -170,13 +194,14 @@ void ObstacleContacts(const engine::ConvexShape& body, const ObstacleField& fiel
       cand.push_back(k);
     }
     // obstacle samples inside the body
+    hint = -1;
     for (const Vec3& q : o.shape.samples) {
       if ((q.array() < body.aabb_min.array()).any() || (q.array() > body.aabb_max.array()).any()) {
         continue;
       }
       int face = 0;
-      const double d = body.SignedDistance(q, &face);
-      if (d >= 0.0) continue;
+      double d = 0.0;
+      if (!body.Inside(q, &d, &face, &hint)) continue;
       const engine::ConvexShape::Face& f = body.faces[static_cast<size_t>(face)];
       BodyContact k;
       k.depth_m = -d;
@@ -194,9 +219,32 @@ void WheelObstacleContacts(const Vec3& c, const Vec3& a, double r, double hw,
                            const ObstacleField& field, double wheel_friction, int max_per_obstacle,
                            ContactScratch* scratch, std::vector<BodyContact>* out) {
   const Vec3 reach = Vec3::Constant(r + hw);
+  // A sample inside the cylinder is within r^2 + hw^2 of its centre; (r + hw)^2 is a bound with
+  // room for any rounding, so the quick reject below drops no sample the exact test keeps.
+  const double reach2 = (r + hw) * (r + hw);
   field.Overlapping(c - reach, c + reach, &scratch->obstacles);
   for (int index : scratch->obstacles) {
     const Obstacle& o = field.obstacles()[static_cast<size_t>(index)];
+    // The cylinder's deepest point below each obstacle face (the wheel's point furthest along the
+    // face's inward normal) and how far it is outside that face. One face with the whole cylinder
+    // outside it (by kSeparatedBy_m) separates them: no sample is in the cylinder and no point of
+    // it in the obstacle, so the tests below would find nothing.
+    const size_t nf = o.shape.faces.size();
+    scratch->face_points.resize(nf);
+    scratch->face_depths.resize(nf);
+    bool separated = false;
+    for (size_t i = 0; i < nf && !separated; ++i) {
+      const engine::ConvexShape::Face& f = o.shape.faces[i];
+      const double na = f.normal.dot(a);
+      Vec3 in_plane = f.normal - na * a;
+      const double in_norm = in_plane.norm();
+      Vec3 p = c - hw * (na >= 0.0 ? 1.0 : -1.0) * a;
+      if (in_norm > 1e-9) p -= r * in_plane / in_norm;
+      scratch->face_points[i] = p;
+      scratch->face_depths[i] = f.normal.dot(p) - f.offset;
+      separated = scratch->face_depths[i] >= kSeparatedBy_m;
+    }
+    if (separated) continue;
     std::vector<BodyContact>& cand = scratch->candidates;
     cand.clear();
     const double mu = std::min(wheel_friction, o.friction);
@@ -206,6 +254,7 @@ void WheelObstacleContacts(const Vec3& c, const Vec3& a, double r, double hw,
     // near the side walls would turn an edge across the whole tread into sideways pushes.)
     for (const Vec3& q : o.shape.samples) {
       const Vec3 u = q - c;
+      if (u.squaredNorm() >= reach2) continue;
       const double along = u.dot(a);
       if (std::abs(along) >= hw) continue;
       const Vec3 radial = u - along * a;
@@ -221,15 +270,12 @@ void WheelObstacleContacts(const Vec3& c, const Vec3& a, double r, double hw,
     }
     // The cylinder's deepest point below each obstacle face, where it lies inside the obstacle
     // with that face the least penetrated (a wheel resting on a face).
-    for (const engine::ConvexShape::Face& f : o.shape.faces) {
-      const double na = f.normal.dot(a);
-      Vec3 in_plane = f.normal - na * a;
-      const double in_norm = in_plane.norm();
-      Vec3 p = c - hw * (na >= 0.0 ? 1.0 : -1.0) * a;
-      if (in_norm > 1e-9) p -= r * in_plane / in_norm;
+    for (size_t i = 0; i < nf; ++i) {
+      const engine::ConvexShape::Face& f = o.shape.faces[i];
+      const Vec3& p = scratch->face_points[i];
       // p is inside with f its least penetrated face (the first of equals) iff every other face
       // is deeper; checked face by face with an early exit (hulls have tens of faces)
-      const double d = f.normal.dot(p) - f.offset;
+      const double d = scratch->face_depths[i];
       if (d >= 0.0) continue;
       bool least = true;
       for (const engine::ConvexShape::Face& g : o.shape.faces) {

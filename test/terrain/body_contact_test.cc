@@ -42,6 +42,44 @@ TEST(ConvexShapeTest, BoxAndHullAgree) {
                InputError);
 }
 
+// Inside is SignedDistance < 0, bit for bit (value and face), on a grid of points in and around
+// a rock-like hull, its vertices and its face planes (the contact queries rely on it).
+TEST(ConvexShapeTest, InsideAgreesWithSignedDistanceBitForBit) {
+  std::vector<Vec3> points;
+  for (int i = 0; i < 24; ++i) {   // a lumpy hull: points on an ellipsoid, radius varied
+    const double u = 0.7 * i, v = 1.3 * i + 0.4;
+    const double rr = 1.0 + 0.15 * std::sin(3.0 * u);
+    points.push_back(Vec3(1.2 * rr * std::cos(u) * std::sin(v), 0.9 * rr * std::sin(u) * std::sin(v),
+                          0.7 * rr * std::cos(v)));
+  }
+  const engine::ConvexShape hull = engine::MakeConvexHull(points, 0.3, "rock");
+  std::vector<Vec3> probes = hull.vertices;
+  for (const engine::ConvexShape::Face& f : hull.faces) probes.push_back(f.normal * f.offset);
+  for (int x = -15; x <= 15; ++x)
+    for (int y = -12; y <= 12; ++y)
+      for (int z = -10; z <= 10; ++z) probes.push_back(Vec3(0.1 * x, 0.1 * y, 0.1 * z));
+  int inside = 0, hint = -1;
+  for (const Vec3& p : probes) {
+    int face_sd = -1, face_in = -1, face_hinted = -1;
+    const double sd = hull.SignedDistance(p, &face_sd);
+    double d = 7.0, d_hinted = 7.0;
+    const bool in = hull.Inside(p, &d, &face_in);
+    // with a hint carried from the previous probe (what the contact loops do)
+    const bool in_hinted = hull.Inside(p, &d_hinted, &face_hinted, &hint);
+    ASSERT_EQ(in, sd < 0.0) << p.transpose();
+    ASSERT_EQ(in_hinted, in) << p.transpose();
+    if (in) {
+      ++inside;
+      EXPECT_EQ(d, sd);
+      EXPECT_EQ(face_in, face_sd);
+      EXPECT_EQ(d_hinted, sd);
+      EXPECT_EQ(face_hinted, face_sd);
+    }
+  }
+  EXPECT_GT(inside, 1000);                              // the test saw both kinds of point
+  EXPECT_LT(inside, static_cast<int>(probes.size()) - 1000);
+}
+
 TEST(BodyContactTest, BoxSunkIntoAPlaneTouchesAtItsBottom) {
   const TaskSpec task = test::PlaneTask(32.0);  // z = 0, concrete mu 0.9
   const Terrain ground(task);

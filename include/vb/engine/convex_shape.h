@@ -27,6 +27,12 @@ struct ConvexShape {
   // bound of the true distance), < 0 inside (minus the depth below the nearest face). *face gets
   // that face's index.
   double SignedDistance(const Vec3& p, int* face) const;
+  // Whether p is strictly inside; if so, *signed_distance and *face are what SignedDistance gives
+  // (bit for bit: the same faces in the same order). Stops at the first face p is not below, so
+  // the contact queries, which only use inside points, skip most of the faces of a far point.
+  // `hint` (optional, in/out): a face to try first, set to the face that rejected p; neighbouring
+  // query points (samples along an edge) are mostly rejected by the same face.
+  bool Inside(const Vec3& p, double* signed_distance, int* face, int* hint = nullptr) const;
   // The same shape moved by `pose` (vertices, planes, samples, box).
   ConvexShape Transformed(const Pose& pose) const;
   // Transformed into *out, reusing its storage (no allocation once sized). Without samples, only

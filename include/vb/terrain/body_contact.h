@@ -42,7 +42,14 @@ struct ContactScratch {
   std::vector<BodyContact> candidates;
   std::vector<int> obstacles;
   std::vector<char> taken;
+  std::vector<Vec3> face_points;     // WheelObstacleContacts: the cylinder's deepest point per face
+  std::vector<double> face_depths;   // and its signed distance to that face's plane
 };
+
+// Shapes further apart than this along one of their face normals touch nowhere: the contact
+// queries skip such a pair before their sample tests. Far above the rounding of posed shapes, so
+// a skipped pair is one the full tests would have found no contact in.
+constexpr double kSeparatedBy_m = 1e-6;
 
 // The highest the ground gets under the box [lo, hi] (grid vertices in its footprint and the
 // surface at its centre): a body entirely above it cannot touch the ground.

@@ -21,6 +21,30 @@ double ConvexShape::SignedDistance(const Vec3& p, int* face) const {
   return best;
 }
 
+bool ConvexShape::Inside(const Vec3& p, double* signed_distance, int* face, int* hint) const {
+  if (hint != nullptr && *hint >= 0 && static_cast<size_t>(*hint) < faces.size()) {
+    const Face& h = faces[static_cast<size_t>(*hint)];
+    if (h.normal.dot(p) - h.offset >= 0.0) return false;
+  }
+  double best = -1e300;
+  int best_face = 0;
+  for (size_t f = 0; f < faces.size(); ++f) {
+    const double d = faces[f].normal.dot(p) - faces[f].offset;
+    if (d >= 0.0) {   // SignedDistance would be >= d >= 0: not inside
+      if (hint != nullptr) *hint = static_cast<int>(f);
+      return false;
+    }
+    if (d > best) {
+      best = d;
+      best_face = static_cast<int>(f);
+    }
+  }
+  if (faces.empty()) return false;
+  *signed_distance = best;
+  *face = best_face;
+  return true;
+}
+
 void ConvexShape::TransformSamplesInto(const Pose& pose, ConvexShape* out) const {
   const Mat3 r = pose.rotation.toRotationMatrix();
   out->samples.resize(samples.size());
