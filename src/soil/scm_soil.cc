@@ -42,6 +42,10 @@ constexpr double kMinCos = 0.2;
 constexpr double kScanMargin_m = 1e-7;
 // The 4-neighbour offsets, in the order every pass visits them.
 constexpr int kDi[4] = {1, -1, 0, 0}, kDj[4] = {0, 0, 1, -1};
+// A belt block's other nodes (+i, +j, +i+j; belt_node_stride 2): grid offsets and the pointer
+// offsets inside the block's tile.
+constexpr int kMi[3] = {1, 0, 1}, kMj[3] = {0, 1, 1};
+constexpr int kMateOffset[3] = {1, kTileSize, kTileSize + 1};
 
 struct Node {
   double base_m = 0.0;        // initial terrain level
@@ -293,19 +297,16 @@ struct ScmSoil::Impl {
   }
 
   void Erode(const BulldozingParams& bp);
-  // TrackContact with the belt pressing every kStride-th node each way (1 or 2).
+  // TrackContact with the belt pressing every kStride-th node each way (1 or 2). At 2 the
+  // pressed node stands for its 2 x 2 block (+i, +j, +i+j: the same tile): the block's other
+  // nodes under the belt at or below its level follow it (contacts, bearing through its stress
+  // on the block's cell); one standing above it (soil bulldozing or erosion put there, fresh soil
+  // ahead of the rut) is pressed by its own law and bears on its own cell in place of the
+  // pressed node's stress there, so deposits under the belt bear as on the full grid. The block
+  // shares one slip velocity, Janosi shear displacement (on the pressed node) and force split.
   template <int kStride>
   TrackSoilOutput Track(const SoilConfig& config, const TrackSoilInput& tr, double dt);
-  // TrackContact with every node's own normal law and the shear once per 2 x 2 block of nodes
-  // (SoilConfig::belt_shear_block 2, docs/soil.md "The belt's shear blocks").
-  TrackSoilOutput TrackBlocks(const SoilConfig& config, const TrackSoilInput& tr, double dt);
-  // One 2 x 2 block's contacts in `hits` [begin, end); rep: the block's node (even i, even j
-  // from the world's first node), which stores the block's shear displacement.
-  struct BlockSpan {
-    uint32_t begin, end;
-    Node* rep;
-  };
-  std::vector<BlockSpan> blocks;
+  std::vector<char> hit_rep_in;   // belt_node_stride 2: the pressed node itself in contact
   void DepositOnRim(const Patch& patch, size_t begin, double volume);
   std::vector<double> room;
   std::vector<bool> full_scratch;
@@ -318,9 +319,6 @@ ScmSoil::ScmSoil(const terrain::Terrain& terrain, const SoilConfig& config)
   }
   if (config_.belt_node_stride != 1 && config_.belt_node_stride != 2) {
     throw InputError(config_.source, 0, "belt_node_stride", "must be 1 or 2");
-  }
-  if (config_.belt_shear_block != 1 && config_.belt_shear_block != 2) {
-    throw InputError(config_.source, 0, "belt_shear_block", "must be 1 or 2");
   }
   if (!(config_.default_wheel_mass_kg > 0.0) || !(config_.default_wheel_spin_inertia_kgm2 > 0.0)) {
     throw InputError(config_.source, 0, "stabilisation", "default wheel mass and inertia must be > 0");
@@ -611,8 +609,7 @@ void ScmSoil::Impl::DepositOnRim(const Patch& patch, size_t begin, double volume
 TrackSoilOutput ScmSoil::TrackContact(const TrackSoilInput& tr, double dt) {
   // The belt's node stride as a compile-time constant: the default (every node) scans exactly as
   // before the coarse grid existed, with no per-node cost of it.
-  if (config_.belt_node_stride == 2) return impl_->Track<2>(config_, tr, dt);
-  return config_.belt_shear_block == 2 ? impl_->TrackBlocks(config_, tr, dt)
+  return config_.belt_node_stride == 2 ? impl_->Track<2>(config_, tr, dt)
                                        : impl_->Track<1>(config_, tr, dt);
 }
 
@@ -724,7 +721,9 @@ TrackSoilOutput ScmSoil::Impl::Track(const SoilConfig& config, const TrackSoilIn
     // height (t, l, then az + t dz + l tilt) by rounding only (~1e-13 m): kScanMargin_m covers
     // it, so no node they skip could be a contact.
     const double z_slope = sx / len2 * dz + lx * tilt;
+    const double zy_slope = sy / len2 * dz + ly * tilt;   // the belt height's slope along y
     m.hits.clear();
+    m.hit_rep_in.clear();
     for (int j = align_up(j_lo, m.j_min); j <= j_hi; j += stride) {
       const double uy = j * m.dx - a.y();
       double lo = -1e300, hi = 1e300;
@@ -768,20 +767,63 @@ TrackSoilOutput ScmSoil::Impl::Track(const SoilConfig& config, const TrackSoilIn
         // the full test.
         const double z0 = z_row + (base_i * dx - ax) * z_slope;
         const double z1 = z_row + (chunk_end * dx - ax) * z_slope;
-        if (std::min(z0, z1) - kScanMargin_m >= tile->row_top_m[grid_row.lj & kTileMask]) {
-          i = chunk_end + 1;
-          continue;
+        if constexpr (stride == 1) {
+          if (std::min(z0, z1) - kScanMargin_m >= tile->row_top_m[grid_row.lj & kTileMask]) {
+            i = chunk_end + 1;
+            continue;
+          }
+        } else {
+          // the block's other nodes (+i, +j: the next row of the same tile) may carry deposits
+          const double z_lo = std::min(std::min(z0, z1 + dx * z_slope),
+                                       std::min(z0, z1 + dx * z_slope) + dx * zy_slope);
+          const int lj = grid_row.lj & kTileMask;
+          if (z_lo - kScanMargin_m >= std::max(tile->row_top_m[lj], tile->row_top_m[lj + 1])) {
+            i = chunk_end + 1;
+            continue;
+          }
         }
         const double z_step = stride * dx * z_slope;
         double z_quick = z0 - kScanMargin_m;   // at node i
         for (; i <= chunk_end; i += stride, z_quick += z_step) {
           Node* node = base + (i - base_i);  // beyond i_max: a rigid node (slot -1), skipped
-          if (node->slot < 0) continue;
-          if (node->plastic_m >= 0.0 && z_quick >= node->level0_m) continue;
+          if constexpr (stride == 1) {
+            if (node->slot < 0) continue;
+            if (node->plastic_m >= 0.0 && z_quick >= node->level0_m) continue;
+          } else {
+            if (node->slot < 0) continue;
+            // the whole block at once: the belt above every node's undisturbed level
+            const Node& n1 = node[1];
+            const Node& n2 = node[kTileSize];
+            const Node& n3 = node[kTileSize + 1];
+            const double zb = z_quick + std::min(0.0, dx * z_slope) + std::min(0.0, dx * zy_slope);
+            const double top = std::max(std::max(node->level0_m, n1.level0_m),
+                                        std::max(n2.level0_m, n3.level0_m));
+            const bool plastic_ok = (node->plastic_m >= 0.0) & (n1.plastic_m >= 0.0) &
+                                    (n2.plastic_m >= 0.0) & (n3.plastic_m >= 0.0);
+            if (plastic_ok && zb >= top) continue;
+          }
           double t = 0.0, l = 0.0, cover = 0.0;
           if (!row.Covers(i, &t, &l, &cover)) continue;
           const double hit_z = az + t * dz + l * tilt;
-          if (AboveLevel(*node, hit_z)) continue;
+          if constexpr (stride == 1) {
+            if (AboveLevel(*node, hit_z)) continue;
+          } else {
+            // the pressed node above its soil: the block still bears where one of its other
+            // nodes under the belt (a deposit) reaches the belt
+            const bool rep_in = !AboveLevel(*node, hit_z);
+            if (!rep_in) {
+              bool any = false;
+              for (int q = 0; q < 3 && !any; ++q) {
+                const Node& mt = node[kMateOffset[q]];
+                const double ml = l + kMi[q] * lx * dx + kMj[q] * ly * dx;
+                if (mt.slot < 0 || !(std::abs(ml) < half_w + 0.5 * dx)) continue;
+                const double mz = hit_z + kMi[q] * dx * z_slope + kMj[q] * dx * zy_slope;
+                any = !AboveLevel(mt, mz);
+              }
+              if (!any) continue;
+            }
+            m.hit_rep_in.push_back(rep_in ? 1 : 0);
+          }
           m.hits.push_back({node, i, j, Vec3(i * dx, j * dx, hit_z), l, t, cover});
         }
       }
@@ -805,360 +847,155 @@ TrackSoilOutput ScmSoil::Impl::Track(const SoilConfig& config, const TrackSoilIn
     double kb[3];   // each soil's Bekker modulus kc / b + kphi
     for (size_t q = 0; q < 3; ++q) kb[q] = m.soils[q].bekker_kc / bb + m.soils[q].bekker_kphi;
     const size_t begin = m.contacts.size();
-    for (const Impl::Hit& h : m.hits) {
-      Node& nd = *h.node;
-      const SoilParams& sp = m.soils[static_cast<size_t>(nd.slot)];
-      const double ca = nd.cos_slope;
-      const double z = ca * (nd.level0_m - h.p.z());
-      const double ke = sp.elastic_stiffness_papm * k_scale;
-      double sigma = ke * (z - nd.plastic_m);
-      double p_bekker = 0.0;
-      double flow = 0.0;
-      if (m.Yields(static_cast<size_t>(nd.slot), kb[nd.slot], z, sigma, &p_bekker)) {
-        sigma = p_bekker;
-        const double plastic = z - p_bekker / ke;
-        flow = (plastic - nd.plastic_m) / ca;
-        nd.plastic_m = plastic;
-      }
-      const double t = h.lon;
-      const Vec3 v = (1.0 - t) * tr.velocities_W[k] + t * tr.velocities_W[k + 1];
-      const double vn = v.dot(nw);
-      const double area = cell * h.cover / std::max(kMinCos, nw.z());
-      const double vn_terrain = v.dot(under.normal_W);
-      const double sigma_damp = std::max(-sigma, -sp.damping_paspm * c_scale * vn_terrain);
-      if (nd.contact_step < m.step - 1) nd.shear_m.setZero();
-      const Vec3 vt = v - vn * nw;
-      nd.shear_m += vt * dt;
-      nd.shear_m -= nd.shear_m.dot(nw) * nw;
-      const double jmax = m.shear_cap_m[static_cast<size_t>(nd.slot)];
-      double j_len = nd.shear_m.norm();
-      if (j_len > jmax) {
-        nd.shear_m *= jmax / j_len;
-        j_len = jmax;
-      }
-      Vec3 f = sigma * area * nw + sigma_damp * cell * h.cover * under.normal_W;
-      if (j_len > 0.0) {
-        const double tan_phi = m.tan_friction[static_cast<size_t>(nd.slot)];
-        const double tau_max = sp.cohesion_pa + (sigma + sigma_damp) * tan_phi;
-        const double tau = tau_max * m.Mobilised(static_cast<size_t>(nd.slot), j_len);
-        f -= (tau * area / j_len) * nd.shear_m;
-      }
-      out.point_force_W[k] += (1.0 - t) * f;
-      out.point_force_W[k + 1] += t * f;
-      nd.contact_step = m.step;
-      const double sink = ca * (nd.base_m - h.p.z());
-      out.point_sinkage_m[k] = std::max(out.point_sinkage_m[k], sink);
-      out.point_sinkage_m[k + 1] = std::max(out.point_sinkage_m[k + 1], sink);
-      m.contacts.push_back({h.i, h.j, flow, h.node});
-      if constexpr (stride == 2) {
-        // The node stands for its 2 x 2 block (+i, +j, +i+j: the same tile). The block's other
-        // nodes under the belt (|l| within the half width plus half a grid cell, as a pressed
-        // node at stride 1) sink with it: lowered to its level (plus the difference of their
-        // initial terrain levels, so that a slope stays a slope) if above it. The rut is a rut
-        // at the grid's resolution, and the soil they displace goes to the rim with the rest.
-        Node* const mates[3] = {&nd + 1, &nd + kTileSize, &nd + kTileSize + 1};
-        const double mate_l[3] = {h.lat + lx * dx, h.lat + ly * dx, h.lat + (lx + ly) * dx};
-        constexpr int kMi[3] = {1, 0, 1}, kMj[3] = {0, 1, 1};
-        const double level_rep = Level(nd);
-        for (int q = 0; q < 3; ++q) {
-          Node& mt = *mates[q];
-          if (mt.slot < 0 || !(std::abs(mate_l[q]) < half_w + 0.5 * dx)) continue;
-          const double target = level_rep + (mt.base_m - nd.base_m);
-          const double plastic = (mt.level0_m - target) * mt.cos_slope;
-          double mate_flow = 0.0;
-          if (plastic > mt.plastic_m) {
-            mate_flow = (plastic - mt.plastic_m) / mt.cos_slope;
-            mt.plastic_m = plastic;
-          }
-          mt.contact_step = m.step;
-          m.contacts.push_back({h.i + kMi[q], h.j + kMj[q], mate_flow, &mt});
-        }
-      }
-    }
-    Impl::Patch patch{begin, m.contacts.size(), a, lat, 0.0, half_w};
-    patch.belt = true;
-    patch.belt_end = b;
-    m.patches.push_back(patch);
-    m.stats.contact_nodes += static_cast<long>(m.hits.size());
-  }
-  return out;
-}
-
-// The belt's shear blocks (docs/soil.md): the footprint is scanned 2 x 2 nodes at a time (blocks
-// counted from the world's first node, so that a block never straddles a tile: kTileSize is
-// even); every node of a block is tested and pressed by its own normal law (elastic-plastic
-// Bekker, damping) exactly as a full-grid belt presses it, and counts as a contact for the rim
-// and erosion passes, so what bulldozing puts back under the belt bears as on the full grid.
-// The block's contacts share one slip velocity (the belt's at their mean position along the
-// segment), one Janosi shear displacement (stored on the block's first node), one friction
-// mobilisation and one split of the force between the segment's two points.
-TrackSoilOutput ScmSoil::Impl::TrackBlocks(const SoilConfig& config, const TrackSoilInput& tr,
-                                           double dt) {
-  Impl& m = *this;
-  TrackSoilOutput out;
-  for (Vec3& f : out.point_force_W) f.setZero();
-  const int n = std::clamp(tr.n_points, 0, kMaxTrackPoints);
-  const double half_w = 0.5 * tr.width_m;
-  const Vec3 lat = tr.lateral_W.normalized();
-  double total_len = 0.0;
-  for (int k = 0; k + 1 < n; ++k) total_len += (tr.points_W[k + 1] - tr.points_W[k]).norm();
-  if (!(total_len > 0.0)) return out;
-  const double mass = tr.mass_kg > 0.0 ? tr.mass_kg : config.default_wheel_mass_kg;
-  const double dx = m.dx;
-  const double cell = dx * dx;
-  auto align_down = [](int v, int base) {   // the block start <= v: an even offset from base
-    const int r = (v - base) % 2;
-    return r == 0 ? v : v - (r > 0 ? 1 : -1);
-  };
-  for (int k = 0; k + 1 < n; ++k) {
-    const Vec3& a = tr.points_W[k];
-    const Vec3& b = tr.points_W[k + 1];
-    const Vec3 mid = 0.5 * (a + b);
-    const terrain::SurfacePoint under = m.terrain.Query(mid.x(), mid.y());
-    out.segment_surface[k] = under.surface;
-    if (!terrain::IsDeformable(under.surface)) continue;
-    out.segment_on_soil[k] = true;
-    ++m.stats.wheel_queries;
-    const double seg_len = (b - a).norm();
-    if (seg_len < 1e-9) continue;
-    const Vec3 s_dir = (b - a) / seg_len;
-    Vec3 nw = lat.cross(s_dir);  // belt surface normal, towards the vehicle
-    if (nw.z() < 0.0) nw = -nw;
-    const double nz = std::max(0.05, under.normal_W.z());
-    const double reach = 0.5 * seg_len + half_w;
-    const double soil_top = under.height_m + reach * std::sqrt(1.0 - nz * nz) / nz +
-                            m.max_raise_m + 0.5 * dx;
-    if (std::min(a.z(), b.z()) - half_w * std::abs(lat.z()) >= soil_top) continue;
-    const double ext = half_w + dx;
-    const int i_lo = static_cast<int>(std::ceil((std::min(a.x(), b.x()) - ext) / dx));
-    const int i_hi = static_cast<int>(std::floor((std::max(a.x(), b.x()) + ext) / dx));
-    const int j_lo = static_cast<int>(std::ceil((std::min(a.y(), b.y()) - ext) / dx));
-    const int j_hi = static_cast<int>(std::floor((std::max(a.y(), b.y()) + ext) / dx));
-    const double t_end = k + 2 == n ? 1.0 : 1.0 - 1e-12;
-    const double sx = b.x() - a.x(), sy = b.y() - a.y();
-    const double len2 = sx * sx + sy * sy;
-    if (len2 < 1e-12) continue;
-    const double inv_len = 1.0 / std::sqrt(len2);
-    double lx = -sy * inv_len, ly = sx * inv_len;
-    if (lx * lat.x() + ly * lat.y() < 0.0) {
-      lx = -lx;
-      ly = -ly;
-    }
-    const double lat_h = std::sqrt(std::max(1e-6, 1.0 - lat.z() * lat.z()));
-    const double top = soil_top + ext * std::abs(lat.z()) / lat_h;
-    double t_lo = 0.0, t_hi = t_end;
-    const double dz = b.z() - a.z();
-    if (dz > 1e-12) t_hi = std::min(t_hi, (top - a.z()) / dz);
-    if (dz < -1e-12) t_lo = std::max(t_lo, (top - a.z()) / dz);
-    if (t_lo > t_hi) continue;
-    const double hw_scan = half_w + 0.5 * dx;
-    auto clip = [](double c0, double c1, double v_lo, double v_hi, double* lo, double* hi) {
-      if (std::abs(c1) < 1e-12) {
-        if (c0 < v_lo || c0 > v_hi) *lo = 1.0, *hi = -1.0;
-        return;
-      }
-      double x0 = (v_lo - c0) / c1, x1 = (v_hi - c0) / c1;
-      if (x0 > x1) std::swap(x0, x1);
-      *lo = std::max(*lo, x0);
-      *hi = std::min(*hi, x1);
-    };
-    BeltRow rows[2];
-    for (BeltRow& row : rows) {
-      row.dx = dx;
-      row.cell_w = dx;
-      row.ax = a.x();
-      row.sx = sx;
-      row.len2 = len2;
-      row.lx = lx;
-      row.half_w = half_w;
-      row.hw_scan = hw_scan;
-      row.t_end = t_end;
-    }
-    const double tilt = lat.z() / lat_h;
-    if (m.AboveSoilTops(i_lo, i_hi, j_lo, j_hi,
-                        std::min(a.z(), b.z()) - hw_scan * std::abs(tilt) - kScanMargin_m)) {
-      continue;
-    }
-    const double ax = a.x(), az = a.z();
-    const int i_min = m.i_min;
-    const double z_slope = sx / len2 * dz + lx * tilt;
-    m.hits.clear();
-    m.blocks.clear();
-    for (int j = align_down(j_lo, m.j_min); j <= j_hi; j += 2) {
-      // the block row: grid rows j and j + 1, scanned over the union of their intervals
-      double lo = 1e300, hi = -1e300, z_row[2];
-      for (int r = 0; r < 2; ++r) {
-        const double uy = (j + r) * dx - a.y();
-        double r_lo = -1e300, r_hi = 1e300;
-        clip(uy * sy / len2, sx / len2, t_lo, t_hi, &r_lo, &r_hi);
-        clip(uy * ly, lx, -hw_scan, hw_scan, &r_lo, &r_hi);
-        if (r_lo <= r_hi) {
-          lo = std::min(lo, r_lo);
-          hi = std::max(hi, r_hi);
-        }
-        rows[r].t_row = uy * sy / len2;
-        rows[r].l_row = uy * ly;
-        z_row[r] = az + rows[r].t_row * dz + rows[r].l_row * tilt;
-      }
-      if (lo > hi) continue;
-      const int i0 = align_down(std::max(i_lo, CeilToInt((a.x() + lo) / dx - 1e-9)), i_min);
-      const int i1 = std::min(i_hi, FloorToInt((a.x() + hi) / dx + 1e-9));
-      if (i0 > i1) continue;
-      const Impl::GridRow grid_row = m.Row(j);
-      int i = i0;
-      while (i <= i1) {
-        const int chunk_end =
-            std::min(i1, i_min + (((i - i_min) >> kTileBits) + 1) * kTileSize - 1);
-        // the first block in this tile with a node the belt covers: the one tile look-up
-        Node* base = nullptr;
-        Tile* tile = nullptr;
-        for (; i <= chunk_end; i += 2) {
-          double t = 0.0, l = 0.0, cover = 0.0;
-          if (!rows[0].Covers(i, &t, &l, &cover) && !rows[0].Covers(i + 1, &t, &l, &cover) &&
-              !rows[1].Covers(i, &t, &l, &cover) && !rows[1].Covers(i + 1, &t, &l, &cover)) {
-            continue;
-          }
-          base = m.AtInRow(grid_row, i, true, &tile);
-          break;
-        }
-        if (i > chunk_end) continue;
-        const int base_i = i;
-        if (base == nullptr) {   // outside the world
-          i = chunk_end + 1;
-          continue;
-        }
-        // Quick rejects, exact (as Track): the belt's lowest node over the chunk's two rows is
-        // at an end; a node with the belt above its undisturbed level is not tested further.
-        const int end_i = std::min(chunk_end + 1, i_min + (((base_i - i_min) >> kTileBits) + 1) *
-                                                              kTileSize - 1);
-        const double z_lo =
-            std::min(std::min(z_row[0], z_row[1]) + (base_i * dx - ax) * z_slope,
-                     std::min(z_row[0], z_row[1]) + (end_i * dx - ax) * z_slope);
-        const int lj = grid_row.lj & kTileMask;   // even: rows lj and lj + 1 of the tile
-        if (z_lo - kScanMargin_m >= std::max(tile->row_top_m[lj], tile->row_top_m[lj + 1])) {
-          i = chunk_end + 1;
-          continue;
-        }
-        for (; i <= chunk_end; i += 2) {
-          Node* const rep = base + (i - base_i);
-          {
-            // the whole block at once: the belt above every node's undisturbed level
-            const Node& n0 = rep[0];
-            const Node& n1 = rep[1];
-            const Node& n2 = rep[kTileSize];
-            const Node& n3 = rep[kTileSize + 1];
-            const double zb = std::min(z_row[0], z_row[1]) + (i * dx - ax) * z_slope +
-                              std::min(0.0, dx * z_slope) - kScanMargin_m;
-            const double top = std::max(std::max(n0.level0_m, n1.level0_m),
-                                        std::max(n2.level0_m, n3.level0_m));
-            const bool plastic_ok = (n0.plastic_m >= 0.0) & (n1.plastic_m >= 0.0) &
-                                    (n2.plastic_m >= 0.0) & (n3.plastic_m >= 0.0);
-            if (plastic_ok && zb >= top) continue;
-          }
-          const auto block_begin = static_cast<uint32_t>(m.hits.size());
-          for (int r = 0; r < 2; ++r) {
-            const double zq = z_row[r] + (i * dx - ax) * z_slope - kScanMargin_m;
-            for (int c = 0; c < 2; ++c) {
-              Node* node = rep + r * kTileSize + c;   // beyond the world edge: slot -1
-              if (node->slot < 0) continue;
-              if (node->plastic_m >= 0.0 && zq + c * dx * z_slope >= node->level0_m) continue;
-              double t = 0.0, l = 0.0, cover = 0.0;
-              if (!rows[r].Covers(i + c, &t, &l, &cover)) continue;
-              const double hit_z = az + t * dz + l * tilt;
-              if (AboveLevel(*node, hit_z)) continue;
-              m.hits.push_back({node, i + c, j + r, Vec3((i + c) * dx, (j + r) * dx, hit_z), l,
-                                t, cover});
-            }
-          }
-          const auto block_end = static_cast<uint32_t>(m.hits.size());
-          if (block_end > block_begin) m.blocks.push_back({block_begin, block_end, rep});
-        }
-      }
-    }
-    if (m.hits.empty()) continue;
-    double lat_lo = 1e300, lat_hi = -1e300;
-    for (const Impl::Hit& h : m.hits) {
-      lat_lo = std::min(lat_lo, h.lat);
-      lat_hi = std::max(lat_hi, h.lat);
-    }
-    const double bb = std::max(dx, std::min(lat_hi - lat_lo + dx, 2.0 * half_w));
-    const double seg_mass = mass * seg_len / total_len;
-    double k_total = 0.0, c_total = 0.0;
-    for (const Impl::Hit& h : m.hits) {
-      const SoilParams& sp = m.soils[static_cast<size_t>(h.node->slot)];
-      k_total += sp.elastic_stiffness_papm * cell * h.cover;
-      c_total += sp.damping_paspm * cell * h.cover;
-    }
-    const double k_scale = std::min(1.0, kStiffnessLimit * seg_mass / (k_total * dt * dt));
-    const double c_scale = 1.0 / (1.0 + c_total * dt / seg_mass);
-    double kb[3];   // each soil's Bekker modulus kc / b + kphi
-    for (size_t q = 0; q < 3; ++q) kb[q] = m.soils[q].bekker_kc / bb + m.soils[q].bekker_kphi;
-    const double area_per_cover = cell / std::max(kMinCos, nw.z());
-    const size_t begin = m.contacts.size();
-    const Vec3& v_a = tr.velocities_W[k];
-    const Vec3& v_b = tr.velocities_W[k + 1];
-    for (const Impl::BlockSpan& blk : m.blocks) {
-      // the block's slip kinematics: the belt's velocity at its contacts' mean position
-      double t_sum = 0.0;
-      for (uint32_t q = blk.begin; q < blk.end; ++q) t_sum += m.hits[q].lon;
-      const double t = t_sum / static_cast<double>(blk.end - blk.begin);
-      const Vec3 v = (1.0 - t) * v_a + t * v_b;
-      const double vn = v.dot(nw);
-      const double vn_terrain = v.dot(under.normal_W);
-      // the block enters contact afresh when none of its nodes was in contact last step
-      Node* const rep = blk.rep;
-      const int32_t last = std::max(std::max(rep->contact_step, rep[1].contact_step),
-                                    std::max(rep[kTileSize].contact_step,
-                                             rep[kTileSize + 1].contact_step));
-      // (a block across two segments' boundary: the first segment's part moved the shear)
-      const bool moved = last == m.step;
-      const bool fresh = last < m.step - 1;
-      double sigma_area = 0.0, damp_area = 0.0, tau_max_area = 0.0;
-      const auto slot0 = static_cast<size_t>(m.hits[blk.begin].node->slot);
-      for (uint32_t q = blk.begin; q < blk.end; ++q) {
-        const Impl::Hit& h = m.hits[q];
+    if constexpr (stride == 1) {
+      for (const Impl::Hit& h : m.hits) {
         Node& nd = *h.node;
-        const auto slot = static_cast<size_t>(nd.slot);
-        const SoilParams& sp = m.soils[slot];
+        const SoilParams& sp = m.soils[static_cast<size_t>(nd.slot)];
         const double ca = nd.cos_slope;
         const double z = ca * (nd.level0_m - h.p.z());
         const double ke = sp.elastic_stiffness_papm * k_scale;
         double sigma = ke * (z - nd.plastic_m);
         double p_bekker = 0.0;
         double flow = 0.0;
-        if (m.Yields(slot, kb[slot], z, sigma, &p_bekker)) {
+        if (m.Yields(static_cast<size_t>(nd.slot), kb[nd.slot], z, sigma, &p_bekker)) {
           sigma = p_bekker;
           const double plastic = z - p_bekker / ke;
           flow = (plastic - nd.plastic_m) / ca;
           nd.plastic_m = plastic;
         }
-        const double area = area_per_cover * h.cover;
+        const double t = h.lon;
+        const Vec3 v = (1.0 - t) * tr.velocities_W[k] + t * tr.velocities_W[k + 1];
+        const double vn = v.dot(nw);
+        const double area = cell * h.cover / std::max(kMinCos, nw.z());
+        const double vn_terrain = v.dot(under.normal_W);
         const double sigma_damp = std::max(-sigma, -sp.damping_paspm * c_scale * vn_terrain);
-        sigma_area += sigma * area;
-        damp_area += sigma_damp * cell * h.cover;
-        tau_max_area += (sp.cohesion_pa + (sigma + sigma_damp) * m.tan_friction[slot]) * area;
+        if (nd.contact_step < m.step - 1) nd.shear_m.setZero();
+        const Vec3 vt = v - vn * nw;
+        nd.shear_m += vt * dt;
+        nd.shear_m -= nd.shear_m.dot(nw) * nw;
+        const double jmax = m.shear_cap_m[static_cast<size_t>(nd.slot)];
+        double j_len = nd.shear_m.norm();
+        if (j_len > jmax) {
+          nd.shear_m *= jmax / j_len;
+          j_len = jmax;
+        }
+        Vec3 f = sigma * area * nw + sigma_damp * cell * h.cover * under.normal_W;
+        if (j_len > 0.0) {
+          const double tan_phi = m.tan_friction[static_cast<size_t>(nd.slot)];
+          const double tau_max = sp.cohesion_pa + (sigma + sigma_damp) * tan_phi;
+          const double tau = tau_max * m.Mobilised(static_cast<size_t>(nd.slot), j_len);
+          f -= (tau * area / j_len) * nd.shear_m;
+        }
+        out.point_force_W[k] += (1.0 - t) * f;
+        out.point_force_W[k + 1] += t * f;
         nd.contact_step = m.step;
         const double sink = ca * (nd.base_m - h.p.z());
         out.point_sinkage_m[k] = std::max(out.point_sinkage_m[k], sink);
         out.point_sinkage_m[k + 1] = std::max(out.point_sinkage_m[k + 1], sink);
         m.contacts.push_back({h.i, h.j, flow, h.node});
       }
-      Vec3& shear = rep->shear_m;
-      if (!moved) {
-        if (fresh) shear.setZero();
-        shear += (v - vn * nw) * dt;
-        shear -= shear.dot(nw) * nw;
+    } else {
+      for (size_t hk = 0; hk < m.hits.size(); ++hk) {
+        const Impl::Hit& h = m.hits[hk];
+        Node& nd = *h.node;
+        const bool rep_in = m.hit_rep_in[hk] != 0;
+        const auto slot = static_cast<size_t>(nd.slot);
+        const SoilParams& sp = m.soils[slot];
+        const double ca = nd.cos_slope;
+        // the block's shear history restarts when none of its nodes was in contact last step
+        const int32_t last =
+            std::max(std::max(nd.contact_step, (&nd)[1].contact_step),
+                     std::max((&nd)[kTileSize].contact_step, (&nd)[kTileSize + 1].contact_step));
+        double sigma = 0.0, flow = 0.0;
+        if (rep_in) {
+          const double z = ca * (nd.level0_m - h.p.z());
+          const double ke = sp.elastic_stiffness_papm * k_scale;
+          sigma = ke * (z - nd.plastic_m);
+          double p_bekker = 0.0;
+          if (m.Yields(slot, kb[slot], z, sigma, &p_bekker)) {
+            sigma = p_bekker;
+            const double plastic = z - p_bekker / ke;
+            flow = (plastic - nd.plastic_m) / ca;
+            nd.plastic_m = plastic;
+          }
+        }
+        const double t = h.lon;
+        const Vec3 v = (1.0 - t) * tr.velocities_W[k] + t * tr.velocities_W[k + 1];
+        const double vn = v.dot(nw);
+        const double area = cell * h.cover / std::max(kMinCos, nw.z());
+        const double vn_terrain = v.dot(under.normal_W);
+        const double sigma_damp =
+            rep_in ? std::max(-sigma, -sp.damping_paspm * c_scale * vn_terrain) : 0.0;
+        const double tan_phi = m.tan_friction[slot];
+        // Normal force (along nw) and shear strength of the block: the pressed node's stress on
+        // the block's cell; a node of the block standing above the pressed node's level (soil
+        // bulldozing or erosion put there, or fresh soil ahead of the rut) is pressed by its own
+        // law and bears on its own cell instead of the pressed node's stress there.
+        double sigma_area = sigma * area;
+        double tau_area =
+            rep_in ? (sp.cohesion_pa + (sigma + sigma_damp) * tan_phi) * area : 0.0;
+        const double level_rep = Level(nd);
+        for (int q = 0; q < 3; ++q) {
+          Node& mt = (&nd)[kMateOffset[q]];
+          const double ml = h.lat + kMi[q] * lx * dx + kMj[q] * ly * dx;
+          if (mt.slot < 0 || !(std::abs(ml) < half_w + 0.5 * dx)) continue;
+          const double target = level_rep + (mt.base_m - nd.base_m);
+          const double mz = h.p.z() + kMi[q] * dx * z_slope + kMj[q] * dx * zy_slope;
+          if (rep_in && !(Level(mt) > target)) {   // at or below the pressed node: follows it
+            mt.contact_step = m.step;
+            m.contacts.push_back({h.i + kMi[q], h.j + kMj[q], 0.0, &mt});
+            continue;
+          }
+          if (AboveLevel(mt, mz)) continue;   // the belt does not reach it
+          const auto mslot = static_cast<size_t>(mt.slot);
+          const SoilParams& msp = m.soils[mslot];
+          const double mca = mt.cos_slope;
+          const double mzs = mca * (mt.level0_m - mz);
+          const double mke = msp.elastic_stiffness_papm * k_scale;
+          double msigma = mke * (mzs - mt.plastic_m);
+          double mp_bekker = 0.0;
+          double mflow = 0.0;
+          if (m.Yields(mslot, kb[mslot], mzs, msigma, &mp_bekker)) {
+            msigma = mp_bekker;
+            const double plastic = mzs - mp_bekker / mke;
+            mflow = (plastic - mt.plastic_m) / mca;
+            mt.plastic_m = plastic;
+          }
+          const double mcover = std::min(1.0, (half_w - std::abs(ml)) / dx + 0.5);
+          const double marea = dx * dx * mcover / std::max(kMinCos, nw.z());
+          sigma_area += (msigma - sigma) * marea;
+          tau_area += ((rep_in ? 0.0 : msp.cohesion_pa) +
+                       (msigma - sigma) * m.tan_friction[mslot]) * marea;
+          mt.contact_step = m.step;
+          const double msink = mca * (mt.base_m - mz);
+          out.point_sinkage_m[k] = std::max(out.point_sinkage_m[k], msink);
+          out.point_sinkage_m[k + 1] = std::max(out.point_sinkage_m[k + 1], msink);
+          m.contacts.push_back({h.i + kMi[q], h.j + kMj[q], mflow, &mt});
+        }
+        if (last < m.step - 1) nd.shear_m.setZero();
+        const Vec3 vt = v - vn * nw;
+        nd.shear_m += vt * dt;
+        nd.shear_m -= nd.shear_m.dot(nw) * nw;
+        const double jmax = m.shear_cap_m[slot];
+        double j_len = nd.shear_m.norm();
+        if (j_len > jmax) {
+          nd.shear_m *= jmax / j_len;
+          j_len = jmax;
+        }
+        Vec3 f = sigma_area * nw + sigma_damp * cell * h.cover * under.normal_W;
+        if (j_len > 0.0 && tau_area > 0.0) {
+          f -= (tau_area * m.Mobilised(slot, j_len) / j_len) * nd.shear_m;
+        }
+        out.point_force_W[k] += (1.0 - t) * f;
+        out.point_force_W[k + 1] += t * f;
+        if (rep_in) {
+          nd.contact_step = m.step;
+          const double sink = ca * (nd.base_m - h.p.z());
+          out.point_sinkage_m[k] = std::max(out.point_sinkage_m[k], sink);
+          out.point_sinkage_m[k + 1] = std::max(out.point_sinkage_m[k + 1], sink);
+          m.contacts.push_back({h.i, h.j, flow, h.node});
+        }
       }
-      const double jmax = m.shear_cap_m[slot0];
-      double j_len = shear.norm();
-      if (j_len > jmax) {
-        shear *= jmax / j_len;
-        j_len = jmax;
-      }
-      Vec3 f = sigma_area * nw + damp_area * under.normal_W;
-      if (j_len > 0.0) f -= (tau_max_area * m.Mobilised(slot0, j_len) / j_len) * shear;
-      out.point_force_W[k] += (1.0 - t) * f;
-      out.point_force_W[k + 1] += t * f;
     }
     Impl::Patch patch{begin, m.contacts.size(), a, lat, 0.0, half_w};
     patch.belt = true;

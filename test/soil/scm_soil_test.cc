@@ -225,50 +225,5 @@ TEST(ScmSoilTest, BeltCoarseGridBearsAsTheFullGridAndLeavesARut) {
   EXPECT_NEAR(fz[2], fz[1], 0.03 * fz[1]);
 }
 
-
-// The belt's shear blocks (belt_shear_block 2): every node keeps its own normal law, so a belt
-// pressed straight down bears as on the full grid (to rounding: the stiffness cap's sum runs in
-// block order) and leaves the same rut; a belt sliding over soil it entered all at once gives
-// every node of a block the same shear displacement, so the shear force is the full grid's too.
-TEST(ScmSoilTest, BeltShearBlocksBearAndShearAsTheFullGrid) {
-  const terrain::TaskSpec task =
-      test::PlaneTask(128.0, 0.0, 0.0, 0.0, terrain::SurfaceClass::kSand);
-  const terrain::Terrain ground(task);
-  constexpr double kY = 0.013, kHw = 0.19;
-  double fz[3] = {0.0, 0.0, 0.0}, fx[3] = {0.0, 0.0, 0.0}, rut[3] = {0.0, 0.0, 0.0};
-  for (int block : {1, 2}) {
-    SoilConfig config = Config();
-    config.belt_shear_block = block;
-    ScmSoil soil(ground, config);
-    TrackSoilInput in;
-    in.n_points = 3;
-    in.width_m = 2.0 * kHw;
-    in.lateral_W = Vec3::UnitY();
-    in.mass_kg = 500.0;
-    for (Vec3& v : in.velocities_W) v.setZero();
-    TrackSoilOutput out;
-    for (double z = 0.001; z >= -0.015 - 1e-12; z -= 0.001) {
-      for (int k = 0; k < 3; ++k) in.points_W[k] = Vec3(-1.0 + k, kY, z);
-      out = soil.TrackContact(in, 0.005);
-      soil.EndStep(0.005);
-    }
-    fz[block] = out.point_force_W[0].z() + out.point_force_W[1].z() + out.point_force_W[2].z();
-    rut[block] = soil.SurfaceHeight(0.0, kY);
-    for (Vec3& v : in.velocities_W) v = Vec3(-0.1, 0.0, 0.0);  // the belt slides back
-    for (int step = 0; step < 20; ++step) {
-      out = soil.TrackContact(in, 0.005);
-      soil.EndStep(0.005);
-    }
-    fx[block] = out.point_force_W[0].x() + out.point_force_W[1].x() + out.point_force_W[2].x();
-    std::printf("shear block %d: vertical force %.3f N, rut %.6f m, sliding: force x %.3f N\n",
-                block, fz[block], rut[block], fx[block]);
-  }
-  EXPECT_GT(fz[1], 1000.0);
-  EXPECT_NEAR(fz[2], fz[1], 1e-9 * fz[1]);
-  EXPECT_NEAR(rut[2], rut[1], 1e-12);
-  EXPECT_GT(fx[1], 100.0);   // against the sliding: forward on the belt
-  EXPECT_NEAR(fx[2], fx[1], 1e-6 * fx[1]);
-}
-
 }  // namespace
 }  // namespace vb::soil

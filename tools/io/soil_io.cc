@@ -63,7 +63,7 @@ soil::SoilConfig LoadSoil(const std::string& path) {
   soil::SoilConfig c;
   c.source = path;
 
-  const StrictMap grid = top.Required("grid").AsMap({"spacing_m", "belt_node_stride", "belt_shear_block"});
+  const StrictMap grid = top.Required("grid").AsMap({"spacing_m", "belt_node_stride"});
   const StrictNode spacing = grid.Required("spacing_m");
   c.grid_spacing_m = spacing.AsPositive();
   if (c.grid_spacing_m < 0.005 || c.grid_spacing_m > 0.5) {
@@ -73,11 +73,6 @@ soil::SoilConfig LoadSoil(const std::string& path) {
     const StrictNode stride = grid.Required("belt_node_stride");
     if (stride.AsInt() != 1 && stride.AsInt() != 2) stride.Fail("must be 1 or 2");
     c.belt_node_stride = static_cast<int>(stride.AsInt());
-  }
-  if (grid.Has("belt_shear_block")) {
-    const StrictNode block = grid.Required("belt_shear_block");
-    if (block.AsInt() != 1 && block.AsInt() != 2) block.Fail("must be 1 or 2");
-    c.belt_shear_block = static_cast<int>(block.AsInt());
   }
 
   const StrictMap bd = top.Required("bulldozing").AsMap(
