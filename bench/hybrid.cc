@@ -27,36 +27,30 @@ namespace {
 using Clock = std::chrono::steady_clock;
 using vb::bench::Quantile;
 using vb::bench::ThreadCpuSeconds;
+using vb::bench::TimeCall;
 
 }  // namespace
 
 int main(int argc, char** argv) {
   using namespace vb;
-  std::vector<std::string> tasks;
+  std::vector<std::string> given;
   bool trials = false;
   for (int i = 1; i < argc; ++i) {
     if (std::string(argv[i]) == "--trials") {
       trials = true;
     } else {
-      tasks.push_back(argv[i]);
+      given.push_back(argv[i]);
     }
   }
-  if (tasks.empty()) {
-    for (const char* t : {"env008", "env017", "env026"}) {
-      tasks.push_back(std::string(VB_SOURCE_DIR) + "/tasks/" + t + ".yaml");
-    }
-  }
+  const std::vector<std::string> tasks =
+      bench::BenchTasks("vb_bench_hybrid", given, {"env008", "env017", "env026"});
   const vehicles::VehicleParams hmmwv = io::LoadVehicle(VB_SOURCE_DIR "/data/vehicles/hmmwv.yaml");
   const io::DataDirModelStore store(VB_SOURCE_DIR "/data");
   const char* systems[] = {"mppi", "wmvct", "mppi6", "tal", "tnt"};
-  std::printf("command: vb_bench_hybrid");
-  for (const std::string& t : tasks) std::printf(" %s", t.c_str());
-  std::printf("\n\n");
 
   {
     const terrain::TaskSpec task = io::LoadTask(tasks[0]);
-    const std::optional<soil::SoilConfig> soil =
-        io::LoadSoilIfNeeded(task, VB_SOURCE_DIR "/data/soils/verti_bench.yaml");
+    const std::optional<soil::SoilConfig> soil = bench::BenchSoil(task);
     const bench::PidObservations pid_run =
         bench::RecordPidTrial(task, hmmwv, soil ? &*soil : nullptr, nullptr);
     const std::vector<controllers::Observation>& obs = pid_run.observations;
@@ -66,11 +60,7 @@ int main(int argc, char** argv) {
       c->Reset(context);
       std::vector<double> us, cpu_us;
       for (size_t i = 0; i < obs.size(); i += 10) {   // 0.05 s apart: each call is an update
-        const auto t0 = Clock::now();
-        const double c0 = ThreadCpuSeconds();
-        c->Update(obs[i]);
-        cpu_us.push_back(1e6 * (ThreadCpuSeconds() - c0));
-        us.push_back(std::chrono::duration<double, std::micro>(Clock::now() - t0).count());
+        TimeCall([&] { c->Update(obs[i]); }, &us, &cpu_us);
       }
       std::printf("%-6s update on %s: median %.0f us wall (p90 %.0f), %.0f us CPU (p90 %.0f) "
                   "over %zu updates\n", system, task.name.c_str(), Quantile(us, 0.5),
@@ -85,8 +75,7 @@ int main(int argc, char** argv) {
   std::printf("|---|---|---|---|---|---|\n");
   for (const std::string& path : tasks) {
     const terrain::TaskSpec task = io::LoadTask(path);
-    const std::optional<soil::SoilConfig> soil =
-        io::LoadSoilIfNeeded(task, VB_SOURCE_DIR "/data/soils/verti_bench.yaml");
+    const std::optional<soil::SoilConfig> soil = bench::BenchSoil(task);
     for (const char* system : systems) {
       std::unique_ptr<controllers::Controller> c = controllers::MakeController(system, &store);
       runner::Episode episode(task, hmmwv, runner::EpisodeRules(), soil ? &*soil : nullptr);

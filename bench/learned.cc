@@ -24,7 +24,6 @@
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
 using vb::bench::Quantile;
 using vb::bench::ThreadCpuSeconds;
 
@@ -32,14 +31,10 @@ using vb::bench::ThreadCpuSeconds;
 
 int main(int argc, char** argv) {
   using namespace vb;
-  std::vector<std::string> tasks;
-  for (int i = 1; i < argc; ++i) tasks.push_back(argv[i]);
-  if (tasks.empty()) tasks.push_back(std::string(VB_SOURCE_DIR) + "/tasks/env042.yaml");
+  const std::vector<std::string> tasks = bench::BenchTasks(
+      "vb_bench_learned", std::vector<std::string>(argv + 1, argv + argc), {"env042"});
   const vehicles::VehicleParams hmmwv = io::LoadVehicle(VB_SOURCE_DIR "/data/vehicles/hmmwv.yaml");
   const io::DataDirModelStore store(VB_SOURCE_DIR "/data");
-  std::printf("command: vb_bench_learned");
-  for (const std::string& t : tasks) std::printf(" %s", t.c_str());
-  std::printf("\n\n");
 
   {
     const terrain::TaskSpec task = io::LoadTask(tasks[0]);
@@ -74,26 +69,15 @@ int main(int argc, char** argv) {
     }
   }
 
-  std::printf("\nwhole trials, pairs 0-2 (median RTF; controller share of wall time):\n");
+  std::printf("\nwhole trials, pairs 0-2 (median RTF; controller share of the wall time):\n");
   for (const std::string& path : tasks) {
     const terrain::TaskSpec task = io::LoadTask(path);
-    const std::optional<soil::SoilConfig> soil =
-        io::LoadSoilIfNeeded(task, VB_SOURCE_DIR "/data/soils/verti_bench.yaml");
+    const std::optional<soil::SoilConfig> soil = bench::BenchSoil(task);
     std::printf("  %s:", task.name.c_str());
     for (const char* system : {"pid", "rl", "mcl", "acl"}) {
-      std::vector<double> rtf, share;
-      for (int pair = 0; pair < 3; ++pair) {
-        runner::StepTimings timings;
-        runner::EpisodeRules rules;
-        rules.timings = &timings;
-        runner::TrialSpec spec;
-        spec.pair_index = pair;
-        spec.system = system;
-        const runner::TrialResult r = runner::RunTrial(task, hmmwv, spec, rules, soil ? &*soil : nullptr, &store);
-        rtf.push_back(r.real_time_factor);
-        share.push_back(r.wall_time_s > 0 ? timings.controller_s / r.wall_time_s : 0.0);
-      }
-      std::printf("  %s %.1fx (%.1f %%)", system, Quantile(rtf, 0.5), 100 * Quantile(share, 0.5));
+      const bench::PairTrials t =
+          bench::RunPairs(task, hmmwv, system, soil ? &*soil : nullptr, &store, 3);
+      std::printf("  %s %.1fx (%.1f %%)", system, t.median_rtf, 100.0 * t.controller_share);
     }
     std::printf("\n");
   }

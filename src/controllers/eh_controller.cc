@@ -101,7 +101,7 @@ Command EhController::Update(const Observation& obs) {
                                   params_.steering_rate_per_s * context_.control_period_s);
   Command command;
   command.steering = steering_;
-  SpeedControl(params_.target_speed_mps, obs.forward_speed_mps, params_.speed_kp, &command);
+  SpeedControl(context_.target_speed_mps, obs.forward_speed_mps, params_.speed_kp, &command);
   return command;
 }
 

@@ -105,7 +105,7 @@ void HybridController::Reset(const EpisodeContext& context) {
   const double size_y = context.task != nullptr ? context.task->size_y_m : 0.0;
   cost_.emplace(params_.cost, obstacles, size_x, size_y, trav_ ? &*trav_ : nullptr);
   core_.Reset(context.seed ^ params_.seed_salt);
-  front_.Reset();
+  front_.Reset(context.target_speed_mps);
   planned_steering_ = 0.0;
   steering_ = 0.0;
 }

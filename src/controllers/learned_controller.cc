@@ -74,10 +74,11 @@ std::array<float, 2> LearnedController::Act(const float* features) const {
 Command LearnedController::Update(const Observation& obs) {
   if (calls_ % steps_per_decision_ == 0) {
     // The gym reports the steering applied in the last physics step: the held command, clamped.
-    LearnedFeatures(obs, std::clamp(steering_, -1.0, 1.0), features_.data());
+    LearnedFeatures(obs, std::clamp(steering_, -1.0, 1.0), features_.data(),
+                    context_.target_speed_mps);
     action_ = Act(features_.data());
     steering_ = static_cast<double>(action_[0]);
-    target_speed_mps_ = static_cast<double>(action_[1]) * kLearnedMaxSpeed_mps;
+    target_speed_mps_ = static_cast<double>(action_[1]) * context_.target_speed_mps;
     ++decisions_;
   }
   ++calls_;

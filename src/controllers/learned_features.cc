@@ -32,7 +32,8 @@ ObservationConfig LearnedObservationConfig() {
   return c;
 }
 
-void LearnedFeatures(const Observation& obs, double applied_steering, float* out) {
+void LearnedFeatures(const Observation& obs, double applied_steering, float* out,
+                     double max_speed_mps) {
   VB_DEMAND(!obs.crops.empty() && obs.crops[0].values.size() ==
                                       static_cast<size_t>(kLearnedCropCells * kLearnedCropCells));
   // The local goal in the vehicle frame, in double as the gym computes it.
@@ -49,11 +50,11 @@ void LearnedFeatures(const Observation& obs, double applied_steering, float* out
       obs.rpy.pitch_rad,            obs.angular_velocity_B.x(),
       obs.angular_velocity_B.y(),   obs.angular_velocity_B.z(),
       obs.velocity_W.z(),           applied_steering};
-  static const float kScale[kLearnedStateFeatures] = {
+  const float scale[kLearnedStateFeatures] = {
       static_cast<float>(1.0 / kPiD), 0.1f, 0.1f, 0.01f,
-      static_cast<float>(1.0 / kLearnedMaxSpeed_mps), 2.0f, 2.0f, 1.0f, 1.0f, 1.0f, 0.5f, 1.0f};
+      static_cast<float>(1.0 / max_speed_mps), 2.0f, 2.0f, 1.0f, 1.0f, 1.0f, 0.5f, 1.0f};
   for (int i = 0; i < kLearnedStateFeatures; ++i) {
-    out[i] = Clip(static_cast<float>(state[i]) * kScale[i]);
+    out[i] = Clip(static_cast<float>(state[i]) * scale[i]);
   }
   // Elevation relative to the chassis (float32, as the gym's crop), unknown cells 0.
   const std::vector<double>& v = obs.crops[0].values;

@@ -36,7 +36,7 @@ void MppiController::Reset(const EpisodeContext& context) {
   const double size_y = context.task != nullptr ? context.task->size_y_m : 0.0;
   cost_.emplace(params_.cost, obstacles, size_x, size_y);
   core_.Reset(context.seed ^ params_.seed_salt);
-  front_.Reset();
+  front_.Reset(context.target_speed_mps);
   steering_ = 0.0;
 }
 

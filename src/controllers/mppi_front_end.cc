@@ -21,7 +21,8 @@ ObservationConfig MppiFrontEnd::observation_config() const {
   return c;
 }
 
-void MppiFrontEnd::Reset() {
+void MppiFrontEnd::Reset(double target_speed_mps) {
+  target_speed_mps_ = target_speed_mps;
   last_update_s_ = -1e9;
   updates_ = 0;
 }
@@ -53,7 +54,7 @@ double MppiFrontEnd::Plan(const Observation& obs, double scale, MppiCore& core,
 Command MppiFrontEnd::Drive(const Observation& obs, double steering) const {
   Command command;
   command.steering = steering;
-  SpeedControl(params_.target_speed_mps, obs.forward_speed_mps, params_.speed_kp, &command);
+  SpeedControl(target_speed_mps_, obs.forward_speed_mps, params_.speed_kp, &command);
   return command;
 }
 

@@ -281,6 +281,13 @@ TEST_F(VbBatchTest, ChangedTaskIsReportedNotMixed) {
   const Outcome other = Sh(kBatch + " " + kTasks + " --pairs 0,1 --time-limit 5 --out " +
                            dir.string());
   EXPECT_EQ(other.exit_code, 2) << other.output;
+  // ... and so is another target speed (the default 4 m/s is the same as not giving it).
+  const Outcome faster = Sh(cmd + " --speed 5");
+  EXPECT_EQ(faster.exit_code, 2) << faster.output;
+  EXPECT_NE(faster.output.find("settings"), std::string::npos) << faster.output;
+  const Outcome same = Sh(cmd + " --speed 4");
+  EXPECT_EQ(same.exit_code, 0) << same.output;
+  EXPECT_NE(same.output.find("6 already done, 0 to run"), std::string::npos) << same.output;
 }
 
 // A vehicle or soil file edited after a batch (same names, other content) is a settings change:

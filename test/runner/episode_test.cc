@@ -322,6 +322,29 @@ TEST(EpisodeApiTest, BadRulesAreInputErrors) {
   EXPECT_EQ(key_of(r), "trajectory_every_n_steps");
   r.trajectory_every_n_steps = 4;
   EXPECT_EQ(key_of(r), "");
+  for (double v : {0.0, -1.0, 40.5, std::nan(""), 1e308}) {
+    r = EpisodeRules();
+    r.target_speed_mps = v;
+    EXPECT_EQ(key_of(r), "target_speed_mps") << v;
+  }
+}
+
+// The target speed is a rule of the episode (the original's CLI `speed`): PID holds the speed
+// it is given, and the result says which it was.
+TEST(EpisodeApiTest, TheTargetSpeedIsTheEpisodesRule) {
+  for (double v : {2.0, 6.0}) {
+    EpisodeRules rules;
+    rules.target_speed_mps = v;
+    const TrialResult r = RunTrial(FlatTask(), Hmmwv(), TrialSpec(), rules);
+    EXPECT_EQ(r.status, TrialStatus::kSuccess) << r.message;
+    EXPECT_EQ(r.target_speed_mps, v);
+    // the P controller (gain 1) holds the target within a few per cent on flat dirt
+    EXPECT_NEAR(r.trajectory.back().speed_mps, v, 0.06 * v) << v;
+    // 30 m to the goal circle: about 30 / v plus the launch
+    EXPECT_GT(r.traversal_time_s, 30.0 / v) << v;
+    EXPECT_LT(r.traversal_time_s, 30.0 / v + 4.0) << v;
+  }
+  EXPECT_EQ(RunTrial(FlatTask(), Hmmwv(), TrialSpec()).target_speed_mps, 4.0);
 }
 
 TEST(EpisodeApiTest, NoTrajectoryWhenAskedForNone) {

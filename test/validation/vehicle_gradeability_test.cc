@@ -72,9 +72,10 @@ TEST(VehicleGradeability, SteepestSlopeFromRest) {
 // once). Asserted: mu 0.5 within 3 deg of the reference's interval [20, 25] (measured 25.6);
 // mu 0.9 not below 30 - 3 deg. NOT MET: at mu 0.9 vb climbs 37.3 deg, 5 deg above the original's
 // ~31 (the front-axle-limited open-differential estimate is 36.6 deg, see SteepestSlopeFromRest;
-// why Chrono's run stalls after 13 m at 32 deg is not known: its traction, not its engine, limits
-// there, 2nd gear still gives 23 kN m at the wheels). docs/validation.md.
-bool ClimbsLikeTheReference(const vehicles::VehicleParams& p, double angle_rad, double mu) {
+// why Chrono's run stalls after 13 m at 32 deg: ClimbTimesFollowTheOriginalsRuns, a traction and
+// upshift knife edge). docs/validation.md.
+// Time to climb 30 m up the slope from rest by that protocol; -1 if not within 20 s.
+double SecondsToClimb30m(const vehicles::VehicleParams& p, double angle_rad, double mu) {
   const double sx = std::tan(angle_rad);
   test::VehicleSim sim(test::PlaneTask(128.0, sx, 0.0, mu), p,
                        test::PoseOnPlane(-50.0, 0, sx, 0, 0, p.wheel.radius_m, 0.0));
@@ -84,11 +85,16 @@ bool ClimbsLikeTheReference(const vehicles::VehicleParams& p, double angle_rad, 
   const Vec3 p0 = sim.state().pose_W.position;
   in.braking = 0.0;
   in.throttle = 1.0;
-  for (int k = 0; k < 4000; ++k) {
+  for (int k = 1; k <= 4000; ++k) {
     sim.Step(in);
-    if (sim.state().pose_W.position.x() - p0.x() > 30.0 * std::cos(angle_rad)) return true;
+    if (sim.state().pose_W.position.x() - p0.x() > 30.0 * std::cos(angle_rad))
+      return k * test::kStep_s;
   }
-  return false;
+  return -1.0;
+}
+
+bool ClimbsLikeTheReference(const vehicles::VehicleParams& p, double angle_rad, double mu) {
+  return SecondsToClimb30m(p, angle_rad, mu) > 0.0;
 }
 
 TEST(VehicleGradeability, SlopeLimitMatchesTheOriginalsRuns) {
@@ -108,6 +114,37 @@ TEST(VehicleGradeability, SlopeLimitMatchesTheOriginalsRuns) {
     EXPECT_GE(lo, c.ref_lo - 3.0) << c.mu;
     if (c.mu < 0.8) {
       EXPECT_LE(lo, c.ref_hi + 3.0) << c.mu;
+    }
+  }
+}
+
+// The original's times to 30 m up the slope (reference_chrono_runs.md, "Slopes"), which say
+// more than the pass/fail limit: below 30 deg at mu 0.9 the times follow the original's within
+// 11 %, so the climb's traction and engine match. On the steepest slopes both climbs are
+// traction-limited with the front wheels spinning (vb: front slip 0.85-0.95, the engine pinned
+// at 232-233 rad/s on the full-load map's falling edge, just under the 4th-to-5th upshift at
+// 233.1 rad/s), where the acceleration is the small difference of two large forces: at 30 deg
+// the thrust (4 mu N_front + clutch, 18.4 kN) exceeds the slope's pull (14.2 kN) by 30 %, so
+// ~9 % less front traction gives the original's 7.2 s. vb is faster there (NOT MET,
+// docs/validation.md): 30 deg mu 0.9 -20 %, 20 deg mu 0.5 -26 %; asserted only that vb is not
+// slower.
+TEST(VehicleGradeability, ClimbTimesFollowTheOriginalsRuns) {
+  const vehicles::VehicleParams p = test::Hmmwv();
+  struct Case {
+    double mu, deg, ref_s, tolerance;  // tolerance < 0: only "not slower than the original"
+  };
+  const Case cases[] = {{0.9, 15.0, 3.6, 0.11}, {0.9, 20.0, 4.2, 0.11}, {0.9, 25.0, 4.9, 0.11},
+                        {0.9, 28.0, 5.8, 0.11}, {0.9, 30.0, 7.2, -1.0}, {0.5, 15.0, 5.6, 0.11},
+                        {0.5, 20.0, 9.4, -1.0}};
+  for (const Case& c : cases) {
+    const double t = SecondsToClimb30m(p, c.deg * kDeg, c.mu);
+    std::printf("mu %.1f %4.1f deg: 30 m in %.2f s, the original %.1f s (%+.0f %%)\n", c.mu,
+                c.deg, t, c.ref_s, 100.0 * (t / c.ref_s - 1.0));
+    ASSERT_GT(t, 0.0) << c.mu << " " << c.deg;
+    if (c.tolerance > 0.0) {
+      EXPECT_NEAR(t / c.ref_s, 1.0, c.tolerance) << c.mu << " " << c.deg;
+    } else {
+      EXPECT_LE(t, c.ref_s) << c.mu << " " << c.deg;
     }
   }
 }

@@ -246,6 +246,10 @@ void WriteTrialJson(const runner::TrialResult& r, const std::string& path,
     o.Int("missed_obstacles", r.missed_obstacles);
     o.Int("phantom_rocks", r.phantom_rocks);
   }
+  // Only when not the benchmark's 4 m/s: default records keep their format.
+  if (r.target_speed_mps != runner::kDefaultTargetSpeed_mps) {
+    o.Num("target_speed_mps", r.target_speed_mps);
+  }
   o.Str("status", status);
   o.Raw("failure_type", success ? "null" : JsonString(status));
   o.Str("message", r.message);

@@ -318,6 +318,10 @@ int Run(const Options& o) {
   std::string settings = "time_limit_s=" + vb::io::FormatDouble(o.time_limit_s) +
                          " traj_every=" + std::to_string(o.traj_every) + " soil=" + o.soil + ":" +
                          vb::io::FileFnv1a64Hex(DataDir() + "/soils/" + o.soil + ".yaml");
+  // Only when not the benchmark's speed: batches made before the option resume unchanged.
+  if (o.target_speed_mps != vb::runner::kDefaultTargetSpeed_mps) {
+    settings += " target_speed_mps=" + vb::io::FormatDouble(o.target_speed_mps);
+  }
   for (const std::string& v : spec.vehicles) {
     settings +=
         " vehicle=" + v + ":" + vb::io::FileFnv1a64Hex(DataDir() + "/vehicles/" + v + ".yaml");

@@ -34,6 +34,9 @@ execution:
   --jobs N             parallel trials (default: CPUs available to this process)
   --shard i/N          run only shard i of N (0-based; every N-th trial of the matrix)
   --time-limit S       simulated time limit per trial, in (0, 3600] (default 60, the benchmark rule)
+  --speed V            the systems' target speed in m/s, in (0, 40] (default 4, the original's CLI
+                       default at every scale; another speed is not the benchmark: settings.txt
+                       and every record say it)
   --soil NAME          soil parameters data/soils/NAME.yaml for tasks with mud, sand or snow
                        (default: verti_bench, the original's three soils)
   --traj-every N       keep every N-th physics step in the trajectories (default 1)
@@ -110,6 +113,8 @@ Options ParseArgs(int argc, char** argv) {
       o.soil = args.Value();
     } else if (a == "--time-limit") {
       o.time_limit_s = args.PositiveValueAtMost(vb::runner::kMaxTimeLimit_s);
+    } else if (a == "--speed") {
+      o.target_speed_mps = args.PositiveValueAtMost(vb::runner::kMaxTargetSpeed_mps);
     } else if (a == "--traj-every") {
       o.traj_every = static_cast<int>(args.U64Value(1, 1000000));
     } else if (a == "--trial-timeout") {

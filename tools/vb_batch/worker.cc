@@ -42,6 +42,7 @@ namespace vb_batch {
       spec.vehicle = key.vehicle;
       vb::runner::EpisodeRules rules;
       rules.time_limit_s = o.time_limit_s;
+      rules.target_speed_mps = o.target_speed_mps;
       rules.trajectory_every_n_steps = o.traj_every;
       rules.perception = vb::io::ResolvePerception(key.perception, DataDir());
       const std::optional<vb::soil::SoilConfig> soil =

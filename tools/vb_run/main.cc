@@ -51,6 +51,10 @@ options:
   --time-limit S     simulated time limit in seconds, in (0, 3600] (default: 60, the benchmark
                      rule; for tests and quick looks only, results with another limit are not
                      benchmark results)
+  --speed V          the systems' target speed in m/s, in (0, 40] (default: 4, the original's
+                     CLI default, the same at every scale; the learned systems scale their speed
+                     action and observation by it, as the original's RL). Results at another
+                     speed are not benchmark results; their records say target_speed_mps
   --quiet            no per-trial lines, only the final summary
   --help             this text
   --version          the version and git commit of this build
@@ -79,6 +83,7 @@ struct Options {
   std::string out_dir;
   int traj_every = 1;
   double time_limit_s = vb::runner::EpisodeRules().time_limit_s;
+  double target_speed_mps = vb::runner::kDefaultTargetSpeed_mps;
   bool quiet = false;
   bool help = false;
   bool version = false;
@@ -111,6 +116,8 @@ Options ParseArgs(int argc, char** argv) {
       o.traj_every = static_cast<int>(args.U64Value(1, 1000000));
     } else if (a == "--time-limit") {
       o.time_limit_s = args.PositiveValueAtMost(vb::runner::kMaxTimeLimit_s);
+    } else if (a == "--speed") {
+      o.target_speed_mps = args.PositiveValueAtMost(vb::runner::kMaxTargetSpeed_mps);
     } else if (a == "--quiet") {
       o.quiet = true;
     } else if (args.IsFlag()) {
@@ -177,6 +184,7 @@ int Run(const Options& o) {
   const std::string perception_file =
       o.perception == "none" ? "" : vb::io::PerceptionFile(o.perception, data_dir);
   rules.time_limit_s = o.time_limit_s;
+  rules.target_speed_mps = o.target_speed_mps;
   rules.trajectory_every_n_steps = o.traj_every;
   std::vector<vb::runner::TrialResult> results;
   int counts[vb::runner::kNumTrialStatuses] = {};

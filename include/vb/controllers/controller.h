@@ -35,6 +35,8 @@ struct EpisodeContext {
   double scale = 1.0;        // environment scale (look-ahead etc. scale with it)
   double step_s = 0.005;     // physics step
   double control_period_s = 0.005;  // time between two Update calls
+  // The speed controller's target (EpisodeRules::target_speed_mps; the original's CLI `speed`).
+  double target_speed_mps = 4.0;
   uint64_t seed = 0;         // trial seed: the only source of randomness a controller may use
 };
 

@@ -2,8 +2,8 @@
 // the 20 Hz update gate, the start state from the observation, the local goal 10 m ahead on the A*
 // path (replanned at 10 Hz, asked for through the observation config), the speed bounds widened
 // to [-1, 1] within 2 m of the local goal (the original's rule), the planned steering clamped to
-// [-1, 1] and held between updates, and the fixed-speed throttle controller (4 m/s; the planners'
-// own speed output is unused, as the original). docs/baselines.md "MPPI".
+// [-1, 1] and held between updates, and the fixed-speed throttle controller (the episode's target
+// speed, 4 m/s by default; the planners' own speed output is unused, as the original). docs/baselines.md "MPPI".
 #pragma once
 
 #include "vb/controllers/controller.h"
@@ -19,7 +19,6 @@ struct MppiFrontEndParams {
   double near_goal_m = 2.0;
   MppiControl near_goal_u_min = {-1.0, -1.0};
   MppiControl near_goal_u_max = {1.0, 1.0};
-  double target_speed_mps = 4.0;
   double speed_kp = 1.0;
   double lookahead_m = 10.0;                // multiplied by the environment scale
   double replan_period_s = 0.1;
@@ -30,7 +29,8 @@ class MppiFrontEnd {
   explicit MppiFrontEnd(const MppiFrontEndParams& params = MppiFrontEndParams());
 
   ObservationConfig observation_config() const;
-  void Reset();
+  // A new episode; `target_speed_mps` is its speed controller's target (EpisodeContext).
+  void Reset(double target_speed_mps);
   // True when an update is due at obs.time_s; the update is then counted as done at that time.
   bool Due(const Observation& obs);
   // One core update from the observed pose with this update's bounds; returns the first planned
@@ -45,6 +45,7 @@ class MppiFrontEnd {
 
  private:
   MppiFrontEndParams params_;
+  double target_speed_mps_ = 4.0;
   double last_update_s_ = -1e9;
   long updates_ = 0;
 };

@@ -14,7 +14,6 @@ namespace vb::controllers {
 struct PidParams {
   double steering_kp = 1.0;
   double steering_rate_per_s = 10.0;     // 0.05 per 5 ms step
-  double target_speed_mps = 4.0;
   double speed_kp = 1.0;
   double lookahead_m = 10.0;             // multiplied by the environment scale
   double replan_period_s = 0.1;          // global path replanning (observation builder)

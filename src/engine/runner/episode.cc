@@ -137,6 +137,11 @@ void ValidateRules(const EpisodeRules& rules) {
                      "must be in (0, " + Fmt(kMaxTimeLimit_s) + "] s, got " +
                          Fmt(rules.time_limit_s));
   }
+  if (!(rules.target_speed_mps > 0.0) || !(rules.target_speed_mps <= kMaxTargetSpeed_mps)) {
+    throw InputError("", 0, "target_speed_mps",
+                     "must be in (0, " + Fmt(kMaxTargetSpeed_mps) + "] m/s, got " +
+                         Fmt(rules.target_speed_mps));
+  }
   if (rules.trajectory_every_n_steps < 0) {
     throw InputError("", 0, "trajectory_every_n_steps", "must be >= 0 (0: no trajectory)");
   }
@@ -369,6 +374,7 @@ TrialResult Episode::Impl::MakeResult() const {
   r.spec = spec;
   r.task_name = task.name;
   r.perception = rules.perception.name;
+  r.target_speed_mps = rules.target_speed_mps;
   r.missed_obstacles = builder.perception().missed_obstacles();
   r.phantom_rocks = builder.perception().phantom_rocks();
   r.status = progress.status;
@@ -492,6 +498,7 @@ void Episode::Reset(const TrialSpec& spec) {
   m.context.scale = task.scale;
   m.context.step_s = m.rules.step_s;
   m.context.control_period_s = m.rules.control_period_s;
+  m.context.target_speed_mps = m.rules.target_speed_mps;
   m.context.seed = spec.seed;
 
   const int every = m.rules.trajectory_every_n_steps;

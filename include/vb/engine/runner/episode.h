@@ -52,6 +52,9 @@ struct StepTimings {
 constexpr double kMaxTimeLimit_s = 3600.0;
 // Most samples a trajectory may keep (about 330 MB): time_limit / (step * every) must not exceed it.
 constexpr long kMaxTrajectorySamples = 1000000;
+// The benchmark's target speed (the original's CLI default) and the largest one a tool accepts.
+constexpr double kDefaultTargetSpeed_mps = 4.0;
+constexpr double kMaxTargetSpeed_mps = 40.0;
 
 struct EpisodeRules {
   double step_s = 0.005;               // physics step (as the original)
@@ -60,6 +63,9 @@ struct EpisodeRules {
   // keep their own slower rates inside); the gym interface defaults to 0.1 s.
   double control_period_s = 0.005;
   double time_limit_s = 60.0;
+  // Target of the systems' speed controller (the original's CLI `speed`, default 4 m/s, the same
+  // at every scale; the learned systems' speed action and speed observation are scaled by it).
+  double target_speed_mps = kDefaultTargetSpeed_mps;
   double goal_radius_m = 10.0;         // scaled by task.scale
   double rollover_roll_rad = 30.0 * kPi / 180.0;
   double tipped_roll_rad = 45.0 * kPi / 180.0;  // TrialResult::tipped: |roll| ever above this
@@ -113,6 +119,7 @@ struct TrialResult {
   TrialSpec spec;
   std::string task_name;
   std::string perception = "none";     // perception preset (docs/perception.md)
+  double target_speed_mps = kDefaultTargetSpeed_mps;  // EpisodeRules::target_speed_mps
   int missed_obstacles = 0;            // rocks and trees the perception missed this trial
   int phantom_rocks = 0;               // rocks it saw that are not there
   TrialStatus status = TrialStatus::kTimeout;
