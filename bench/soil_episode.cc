@@ -1,10 +1,11 @@
-// Soil benchmark: the HMMWV with the PID system across a deformable world (default
-// tasks/env061.yaml, mid elevation, mud/snow/sand), each pair one trial of the runner
+// Soil benchmark: a vehicle (default the HMMWV) with the PID system across a deformable world
+// (default tasks/env061.yaml, mid elevation, mud/snow/sand), each pair one trial of the runner
 // (RunTrial, the benchmark's rules) with its step timings on, which time every call into the soil
 // solver and report its counters. Prints per pair the
 // real-time factor, the soil solver's share and cost per step, and the peak memory (getrusage).
 //
-// usage: vb_bench_soil_episode [TASK] [--spacing M] [--pairs N] [--soil FILE]
+// usage: vb_bench_soil_episode [TASK] [--spacing M] [--pairs N] [--soil FILE] [--vehicle NAME]
+// (--spacing replaces the soil file's spacing; a vehicle's max_soil_grid_m still caps it.)
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -64,6 +65,7 @@ int main(int argc, char** argv) {
   std::string soil_path = VB_SOURCE_DIR "/data/soils/verti_bench.yaml";
   double spacing = 0.0;
   int pairs = -1;
+  std::string vehicle = "hmmwv";
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--spacing" && i + 1 < argc) {
@@ -72,6 +74,8 @@ int main(int argc, char** argv) {
       pairs = std::atoi(argv[++i]);
     } else if (a == "--soil" && i + 1 < argc) {
       soil_path = argv[++i];
+    } else if (a == "--vehicle" && i + 1 < argc) {
+      vehicle = argv[++i];
     } else {
       task_path = a;
     }
@@ -79,13 +83,16 @@ int main(int argc, char** argv) {
   try {
     const vb::terrain::TaskSpec task = vb::io::LoadTask(task_path);
     const vb::vehicles::VehicleParams params =
-        vb::io::LoadVehicle(VB_SOURCE_DIR "/data/vehicles/hmmwv.yaml");
+        vb::io::LoadVehicle(VB_SOURCE_DIR "/data/vehicles/" + vehicle + ".yaml");
     vb::soil::SoilConfig soil = vb::io::LoadSoil(soil_path);
     if (spacing > 0.0) soil.grid_spacing_m = spacing;
     const int n = pairs > 0 ? std::min<int>(pairs, static_cast<int>(task.pairs.size()))
                             : static_cast<int>(task.pairs.size());
-    std::printf("task %s, soil %s, grid %.3f m, HMMWV + PID, step 5 ms\n", task_path.c_str(),
-                soil_path.c_str(), soil.grid_spacing_m);
+    const double grid_m = params.max_soil_grid_m > 0.0
+                              ? std::min(soil.grid_spacing_m, params.max_soil_grid_m)
+                              : soil.grid_spacing_m;
+    std::printf("task %s, soil %s, grid %.4f m, %s + PID\n", task_path.c_str(),
+                soil_path.c_str(), grid_m, vehicle.c_str());
     std::printf("(RTF = sim / wall; RTF_cpu = sim / process CPU time, insensitive to a loaded "
                 "machine; soil_%% and soil_us are wall-clock)\n");
     std::printf("pair outcome     sim_s  wall_s    RTF  RTF_cpu  soil_%%  soil_us/step  nodes/step  "

@@ -42,6 +42,10 @@ constexpr double kMinCos = 0.2;
 constexpr double kScanMargin_m = 1e-7;
 // The 4-neighbour offsets, in the order every pass visits them.
 constexpr int kDi[4] = {1, -1, 0, 0}, kDj[4] = {0, 0, 1, -1};
+// A belt block's other nodes (+i, +j, +i+j; belt_node_stride 2): grid offsets and the pointer
+// offsets inside the block's tile.
+constexpr int kMi[3] = {1, 0, 1}, kMj[3] = {0, 1, 1};
+constexpr int kMateOffset[3] = {1, kTileSize, kTileSize + 1};
 
 struct Node {
   double base_m = 0.0;        // initial terrain level
@@ -293,9 +297,16 @@ struct ScmSoil::Impl {
   }
 
   void Erode(const BulldozingParams& bp);
-  // TrackContact with the belt pressing every kStride-th node each way (1 or 2).
+  // TrackContact with the belt pressing every kStride-th node each way (1 or 2). At 2 the
+  // pressed node stands for its 2 x 2 block (+i, +j, +i+j: the same tile): the block's other
+  // nodes under the belt at or below its level follow it (contacts, bearing through its stress
+  // on the block's cell); one standing above it (soil bulldozing or erosion put there, fresh soil
+  // ahead of the rut) is pressed by its own law and bears on its own cell in place of the
+  // pressed node's stress there, so deposits under the belt bear as on the full grid. The block
+  // shares one slip velocity, Janosi shear displacement (on the pressed node) and force split.
   template <int kStride>
   TrackSoilOutput Track(const SoilConfig& config, const TrackSoilInput& tr, double dt);
+  std::vector<char> hit_rep_in;   // belt_node_stride 2: the pressed node itself in contact
   void DepositOnRim(const Patch& patch, size_t begin, double volume);
   std::vector<double> room;
   std::vector<bool> full_scratch;
@@ -710,7 +721,9 @@ TrackSoilOutput ScmSoil::Impl::Track(const SoilConfig& config, const TrackSoilIn
     // height (t, l, then az + t dz + l tilt) by rounding only (~1e-13 m): kScanMargin_m covers
     // it, so no node they skip could be a contact.
     const double z_slope = sx / len2 * dz + lx * tilt;
+    const double zy_slope = sy / len2 * dz + ly * tilt;   // the belt height's slope along y
     m.hits.clear();
+    m.hit_rep_in.clear();
     for (int j = align_up(j_lo, m.j_min); j <= j_hi; j += stride) {
       const double uy = j * m.dx - a.y();
       double lo = -1e300, hi = 1e300;
@@ -754,20 +767,63 @@ TrackSoilOutput ScmSoil::Impl::Track(const SoilConfig& config, const TrackSoilIn
         // the full test.
         const double z0 = z_row + (base_i * dx - ax) * z_slope;
         const double z1 = z_row + (chunk_end * dx - ax) * z_slope;
-        if (std::min(z0, z1) - kScanMargin_m >= tile->row_top_m[grid_row.lj & kTileMask]) {
-          i = chunk_end + 1;
-          continue;
+        if constexpr (stride == 1) {
+          if (std::min(z0, z1) - kScanMargin_m >= tile->row_top_m[grid_row.lj & kTileMask]) {
+            i = chunk_end + 1;
+            continue;
+          }
+        } else {
+          // the block's other nodes (+i, +j: the next row of the same tile) may carry deposits
+          const double z_lo = std::min(std::min(z0, z1 + dx * z_slope),
+                                       std::min(z0, z1 + dx * z_slope) + dx * zy_slope);
+          const int lj = grid_row.lj & kTileMask;
+          if (z_lo - kScanMargin_m >= std::max(tile->row_top_m[lj], tile->row_top_m[lj + 1])) {
+            i = chunk_end + 1;
+            continue;
+          }
         }
         const double z_step = stride * dx * z_slope;
         double z_quick = z0 - kScanMargin_m;   // at node i
         for (; i <= chunk_end; i += stride, z_quick += z_step) {
           Node* node = base + (i - base_i);  // beyond i_max: a rigid node (slot -1), skipped
-          if (node->slot < 0) continue;
-          if (node->plastic_m >= 0.0 && z_quick >= node->level0_m) continue;
+          if constexpr (stride == 1) {
+            if (node->slot < 0) continue;
+            if (node->plastic_m >= 0.0 && z_quick >= node->level0_m) continue;
+          } else {
+            if (node->slot < 0) continue;
+            // the whole block at once: the belt above every node's undisturbed level
+            const Node& n1 = node[1];
+            const Node& n2 = node[kTileSize];
+            const Node& n3 = node[kTileSize + 1];
+            const double zb = z_quick + std::min(0.0, dx * z_slope) + std::min(0.0, dx * zy_slope);
+            const double top = std::max(std::max(node->level0_m, n1.level0_m),
+                                        std::max(n2.level0_m, n3.level0_m));
+            const bool plastic_ok = (node->plastic_m >= 0.0) & (n1.plastic_m >= 0.0) &
+                                    (n2.plastic_m >= 0.0) & (n3.plastic_m >= 0.0);
+            if (plastic_ok && zb >= top) continue;
+          }
           double t = 0.0, l = 0.0, cover = 0.0;
           if (!row.Covers(i, &t, &l, &cover)) continue;
           const double hit_z = az + t * dz + l * tilt;
-          if (AboveLevel(*node, hit_z)) continue;
+          if constexpr (stride == 1) {
+            if (AboveLevel(*node, hit_z)) continue;
+          } else {
+            // the pressed node above its soil: the block still bears where one of its other
+            // nodes under the belt (a deposit) reaches the belt
+            const bool rep_in = !AboveLevel(*node, hit_z);
+            if (!rep_in) {
+              bool any = false;
+              for (int q = 0; q < 3 && !any; ++q) {
+                const Node& mt = node[kMateOffset[q]];
+                const double ml = l + kMi[q] * lx * dx + kMj[q] * ly * dx;
+                if (mt.slot < 0 || !(std::abs(ml) < half_w + 0.5 * dx)) continue;
+                const double mz = hit_z + kMi[q] * dx * z_slope + kMj[q] * dx * zy_slope;
+                any = !AboveLevel(mt, mz);
+              }
+              if (!any) continue;
+            }
+            m.hit_rep_in.push_back(rep_in ? 1 : 0);
+          }
           m.hits.push_back({node, i, j, Vec3(i * dx, j * dx, hit_z), l, t, cover});
         }
       }
@@ -791,73 +847,153 @@ TrackSoilOutput ScmSoil::Impl::Track(const SoilConfig& config, const TrackSoilIn
     double kb[3];   // each soil's Bekker modulus kc / b + kphi
     for (size_t q = 0; q < 3; ++q) kb[q] = m.soils[q].bekker_kc / bb + m.soils[q].bekker_kphi;
     const size_t begin = m.contacts.size();
-    for (const Impl::Hit& h : m.hits) {
-      Node& nd = *h.node;
-      const SoilParams& sp = m.soils[static_cast<size_t>(nd.slot)];
-      const double ca = nd.cos_slope;
-      const double z = ca * (nd.level0_m - h.p.z());
-      const double ke = sp.elastic_stiffness_papm * k_scale;
-      double sigma = ke * (z - nd.plastic_m);
-      double p_bekker = 0.0;
-      double flow = 0.0;
-      if (m.Yields(static_cast<size_t>(nd.slot), kb[nd.slot], z, sigma, &p_bekker)) {
-        sigma = p_bekker;
-        const double plastic = z - p_bekker / ke;
-        flow = (plastic - nd.plastic_m) / ca;
-        nd.plastic_m = plastic;
+    if constexpr (stride == 1) {
+      for (const Impl::Hit& h : m.hits) {
+        Node& nd = *h.node;
+        const SoilParams& sp = m.soils[static_cast<size_t>(nd.slot)];
+        const double ca = nd.cos_slope;
+        const double z = ca * (nd.level0_m - h.p.z());
+        const double ke = sp.elastic_stiffness_papm * k_scale;
+        double sigma = ke * (z - nd.plastic_m);
+        double p_bekker = 0.0;
+        double flow = 0.0;
+        if (m.Yields(static_cast<size_t>(nd.slot), kb[nd.slot], z, sigma, &p_bekker)) {
+          sigma = p_bekker;
+          const double plastic = z - p_bekker / ke;
+          flow = (plastic - nd.plastic_m) / ca;
+          nd.plastic_m = plastic;
+        }
+        const double t = h.lon;
+        const Vec3 v = (1.0 - t) * tr.velocities_W[k] + t * tr.velocities_W[k + 1];
+        const double vn = v.dot(nw);
+        const double area = cell * h.cover / std::max(kMinCos, nw.z());
+        const double vn_terrain = v.dot(under.normal_W);
+        const double sigma_damp = std::max(-sigma, -sp.damping_paspm * c_scale * vn_terrain);
+        if (nd.contact_step < m.step - 1) nd.shear_m.setZero();
+        const Vec3 vt = v - vn * nw;
+        nd.shear_m += vt * dt;
+        nd.shear_m -= nd.shear_m.dot(nw) * nw;
+        const double jmax = m.shear_cap_m[static_cast<size_t>(nd.slot)];
+        double j_len = nd.shear_m.norm();
+        if (j_len > jmax) {
+          nd.shear_m *= jmax / j_len;
+          j_len = jmax;
+        }
+        Vec3 f = sigma * area * nw + sigma_damp * cell * h.cover * under.normal_W;
+        if (j_len > 0.0) {
+          const double tan_phi = m.tan_friction[static_cast<size_t>(nd.slot)];
+          const double tau_max = sp.cohesion_pa + (sigma + sigma_damp) * tan_phi;
+          const double tau = tau_max * m.Mobilised(static_cast<size_t>(nd.slot), j_len);
+          f -= (tau * area / j_len) * nd.shear_m;
+        }
+        out.point_force_W[k] += (1.0 - t) * f;
+        out.point_force_W[k + 1] += t * f;
+        nd.contact_step = m.step;
+        const double sink = ca * (nd.base_m - h.p.z());
+        out.point_sinkage_m[k] = std::max(out.point_sinkage_m[k], sink);
+        out.point_sinkage_m[k + 1] = std::max(out.point_sinkage_m[k + 1], sink);
+        m.contacts.push_back({h.i, h.j, flow, h.node});
       }
-      const double t = h.lon;
-      const Vec3 v = (1.0 - t) * tr.velocities_W[k] + t * tr.velocities_W[k + 1];
-      const double vn = v.dot(nw);
-      const double area = cell * h.cover / std::max(kMinCos, nw.z());
-      const double vn_terrain = v.dot(under.normal_W);
-      const double sigma_damp = std::max(-sigma, -sp.damping_paspm * c_scale * vn_terrain);
-      if (nd.contact_step < m.step - 1) nd.shear_m.setZero();
-      const Vec3 vt = v - vn * nw;
-      nd.shear_m += vt * dt;
-      nd.shear_m -= nd.shear_m.dot(nw) * nw;
-      const double jmax = m.shear_cap_m[static_cast<size_t>(nd.slot)];
-      double j_len = nd.shear_m.norm();
-      if (j_len > jmax) {
-        nd.shear_m *= jmax / j_len;
-        j_len = jmax;
-      }
-      Vec3 f = sigma * area * nw + sigma_damp * cell * h.cover * under.normal_W;
-      if (j_len > 0.0) {
-        const double tan_phi = m.tan_friction[static_cast<size_t>(nd.slot)];
-        const double tau_max = sp.cohesion_pa + (sigma + sigma_damp) * tan_phi;
-        const double tau = tau_max * m.Mobilised(static_cast<size_t>(nd.slot), j_len);
-        f -= (tau * area / j_len) * nd.shear_m;
-      }
-      out.point_force_W[k] += (1.0 - t) * f;
-      out.point_force_W[k + 1] += t * f;
-      nd.contact_step = m.step;
-      const double sink = ca * (nd.base_m - h.p.z());
-      out.point_sinkage_m[k] = std::max(out.point_sinkage_m[k], sink);
-      out.point_sinkage_m[k + 1] = std::max(out.point_sinkage_m[k + 1], sink);
-      m.contacts.push_back({h.i, h.j, flow, h.node});
-      if constexpr (stride == 2) {
-        // The node stands for its 2 x 2 block (+i, +j, +i+j: the same tile). The block's other
-        // nodes under the belt (|l| within the half width plus half a grid cell, as a pressed
-        // node at stride 1) sink with it: lowered to its level (plus the difference of their
-        // initial terrain levels, so that a slope stays a slope) if above it. The rut is a rut
-        // at the grid's resolution, and the soil they displace goes to the rim with the rest.
-        Node* const mates[3] = {&nd + 1, &nd + kTileSize, &nd + kTileSize + 1};
-        const double mate_l[3] = {h.lat + lx * dx, h.lat + ly * dx, h.lat + (lx + ly) * dx};
-        constexpr int kMi[3] = {1, 0, 1}, kMj[3] = {0, 1, 1};
+    } else {
+      for (size_t hk = 0; hk < m.hits.size(); ++hk) {
+        const Impl::Hit& h = m.hits[hk];
+        Node& nd = *h.node;
+        const bool rep_in = m.hit_rep_in[hk] != 0;
+        const auto slot = static_cast<size_t>(nd.slot);
+        const SoilParams& sp = m.soils[slot];
+        const double ca = nd.cos_slope;
+        // the block's shear history restarts when none of its nodes was in contact last step
+        const int32_t last =
+            std::max(std::max(nd.contact_step, (&nd)[1].contact_step),
+                     std::max((&nd)[kTileSize].contact_step, (&nd)[kTileSize + 1].contact_step));
+        double sigma = 0.0, flow = 0.0;
+        if (rep_in) {
+          const double z = ca * (nd.level0_m - h.p.z());
+          const double ke = sp.elastic_stiffness_papm * k_scale;
+          sigma = ke * (z - nd.plastic_m);
+          double p_bekker = 0.0;
+          if (m.Yields(slot, kb[slot], z, sigma, &p_bekker)) {
+            sigma = p_bekker;
+            const double plastic = z - p_bekker / ke;
+            flow = (plastic - nd.plastic_m) / ca;
+            nd.plastic_m = plastic;
+          }
+        }
+        const double t = h.lon;
+        const Vec3 v = (1.0 - t) * tr.velocities_W[k] + t * tr.velocities_W[k + 1];
+        const double vn = v.dot(nw);
+        const double area = cell * h.cover / std::max(kMinCos, nw.z());
+        const double vn_terrain = v.dot(under.normal_W);
+        const double sigma_damp =
+            rep_in ? std::max(-sigma, -sp.damping_paspm * c_scale * vn_terrain) : 0.0;
+        const double tan_phi = m.tan_friction[slot];
+        // Normal force (along nw) and shear strength of the block: the pressed node's stress on
+        // the block's cell; a node of the block standing above the pressed node's level (soil
+        // bulldozing or erosion put there, or fresh soil ahead of the rut) is pressed by its own
+        // law and bears on its own cell instead of the pressed node's stress there.
+        double sigma_area = sigma * area;
+        double tau_area =
+            rep_in ? (sp.cohesion_pa + (sigma + sigma_damp) * tan_phi) * area : 0.0;
         const double level_rep = Level(nd);
         for (int q = 0; q < 3; ++q) {
-          Node& mt = *mates[q];
-          if (mt.slot < 0 || !(std::abs(mate_l[q]) < half_w + 0.5 * dx)) continue;
+          Node& mt = (&nd)[kMateOffset[q]];
+          const double ml = h.lat + kMi[q] * lx * dx + kMj[q] * ly * dx;
+          if (mt.slot < 0 || !(std::abs(ml) < half_w + 0.5 * dx)) continue;
           const double target = level_rep + (mt.base_m - nd.base_m);
-          const double plastic = (mt.level0_m - target) * mt.cos_slope;
-          double mate_flow = 0.0;
-          if (plastic > mt.plastic_m) {
-            mate_flow = (plastic - mt.plastic_m) / mt.cos_slope;
+          const double mz = h.p.z() + kMi[q] * dx * z_slope + kMj[q] * dx * zy_slope;
+          if (rep_in && !(Level(mt) > target)) {   // at or below the pressed node: follows it
+            mt.contact_step = m.step;
+            m.contacts.push_back({h.i + kMi[q], h.j + kMj[q], 0.0, &mt});
+            continue;
+          }
+          if (AboveLevel(mt, mz)) continue;   // the belt does not reach it
+          const auto mslot = static_cast<size_t>(mt.slot);
+          const SoilParams& msp = m.soils[mslot];
+          const double mca = mt.cos_slope;
+          const double mzs = mca * (mt.level0_m - mz);
+          const double mke = msp.elastic_stiffness_papm * k_scale;
+          double msigma = mke * (mzs - mt.plastic_m);
+          double mp_bekker = 0.0;
+          double mflow = 0.0;
+          if (m.Yields(mslot, kb[mslot], mzs, msigma, &mp_bekker)) {
+            msigma = mp_bekker;
+            const double plastic = mzs - mp_bekker / mke;
+            mflow = (plastic - mt.plastic_m) / mca;
             mt.plastic_m = plastic;
           }
+          const double mcover = std::min(1.0, (half_w - std::abs(ml)) / dx + 0.5);
+          const double marea = dx * dx * mcover / std::max(kMinCos, nw.z());
+          sigma_area += (msigma - sigma) * marea;
+          tau_area += ((rep_in ? 0.0 : msp.cohesion_pa) +
+                       (msigma - sigma) * m.tan_friction[mslot]) * marea;
           mt.contact_step = m.step;
-          m.contacts.push_back({h.i + kMi[q], h.j + kMj[q], mate_flow, &mt});
+          const double msink = mca * (mt.base_m - mz);
+          out.point_sinkage_m[k] = std::max(out.point_sinkage_m[k], msink);
+          out.point_sinkage_m[k + 1] = std::max(out.point_sinkage_m[k + 1], msink);
+          m.contacts.push_back({h.i + kMi[q], h.j + kMj[q], mflow, &mt});
+        }
+        if (last < m.step - 1) nd.shear_m.setZero();
+        const Vec3 vt = v - vn * nw;
+        nd.shear_m += vt * dt;
+        nd.shear_m -= nd.shear_m.dot(nw) * nw;
+        const double jmax = m.shear_cap_m[slot];
+        double j_len = nd.shear_m.norm();
+        if (j_len > jmax) {
+          nd.shear_m *= jmax / j_len;
+          j_len = jmax;
+        }
+        Vec3 f = sigma_area * nw + sigma_damp * cell * h.cover * under.normal_W;
+        if (j_len > 0.0 && tau_area > 0.0) {
+          f -= (tau_area * m.Mobilised(slot, j_len) / j_len) * nd.shear_m;
+        }
+        out.point_force_W[k] += (1.0 - t) * f;
+        out.point_force_W[k + 1] += t * f;
+        if (rep_in) {
+          nd.contact_step = m.step;
+          const double sink = ca * (nd.base_m - h.p.z());
+          out.point_sinkage_m[k] = std::max(out.point_sinkage_m[k], sink);
+          out.point_sinkage_m[k + 1] = std::max(out.point_sinkage_m[k + 1], sink);
+          m.contacts.push_back({h.i, h.j, flow, h.node});
         }
       }
     }

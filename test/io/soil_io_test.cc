@@ -44,7 +44,7 @@ std::string WriteVariant(const std::string& from, const std::string& to, int* li
 TEST(SoilIoTest, ShippedFileHasTheOriginalParameters) {
   const soil::SoilConfig c = LoadSoil(kShipped);
   EXPECT_EQ(c.grid_spacing_m, 0.05);
-  EXPECT_EQ(c.belt_node_stride, 1);   // optional key, absent: every node under a belt
+  EXPECT_EQ(c.belt_node_stride, 2);   // the belt's coarse grid (optional key, absent: 1)
   EXPECT_TRUE(c.bulldozing.enabled);
   EXPECT_NEAR(c.bulldozing.erosion_angle_rad, 55.0 * kPi / 180.0, 1e-15);
   EXPECT_EQ(c.bulldozing.flow_factor, 1.0);
@@ -75,8 +75,8 @@ TEST(SoilIoTest, BadInputNamesFileLineAndKey) {
   test::ExpectInputError([&] { LoadSoil(p); }, p, line, "classes.sand.bekker_n", "> 0");
   p = WriteVariant("  spacing_m: 0.05", "  spacing_m: 2.0", &line);
   test::ExpectInputError([&] { LoadSoil(p); }, p, line, "grid.spacing_m", "[0.005, 0.5]");
-  p = WriteVariant("  spacing_m: 0.05", "  spacing_m: 0.05\n  belt_node_stride: 3", &line);
-  test::ExpectInputError([&] { LoadSoil(p); }, p, line + 1, "grid.belt_node_stride", "1 or 2");
+  p = WriteVariant("  belt_node_stride: 2", "  belt_node_stride: 3", &line);
+  test::ExpectInputError([&] { LoadSoil(p); }, p, line, "grid.belt_node_stride", "1 or 2");
   p = WriteVariant("  erosion_angle_deg: 55.0", "  erosion_angle_deg: 95.0", &line);
   test::ExpectInputError([&] { LoadSoil(p); }, p, line, "bulldozing.erosion_angle_deg", "degrees");
   p = WriteVariant("    damping_paspm: 3.0e4\n  mud:", "    damping_paspm: 3.0e4\n    stiffness: 1.0\n  mud:", &line);
@@ -89,9 +89,8 @@ TEST(SoilIoTest, BadInputNamesFileLineAndKey) {
 
 TEST(SoilIoTest, BeltNodeStrideIsOptional) {
   int line = 0;
-  const std::string p =
-      WriteVariant("  spacing_m: 0.05", "  spacing_m: 0.05\n  belt_node_stride: 2", &line);
-  EXPECT_EQ(LoadSoil(p).belt_node_stride, 2);
+  const std::string p = WriteVariant("  belt_node_stride: 2\n", "", &line);
+  EXPECT_EQ(LoadSoil(p).belt_node_stride, 1);   // absent: every node under a belt
 }
 
 TEST(SoilIoTest, MissingFileIsAnInputError) {

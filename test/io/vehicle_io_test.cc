@@ -396,6 +396,8 @@ TEST_F(VehicleFitTest, SuspensionKeysMustFitTheModel) {
                  "unknown model 'turbine'; valid: map, dc_motor, simple");
   ExpectFitError("vw", "max_step_s: 0.0025", "max_step_s: 0.00001", 0, "", "max_step_s",
                  "must be at least 1e-4 s");
+  ExpectFitError("vw", "max_soil_grid_m: 0.0125", "max_soil_grid_m: 0.0002", 0, "",
+                 "max_soil_grid_m", "must be at least 0.001 m");
 }
 
 // Keys read from the loader's tables (one entry a key) keep their checks and name the file, the

@@ -193,6 +193,7 @@ TEST(ScmSoilTest, BeltCoarseGridBearsAsTheFullGridAndLeavesARut) {
     in.width_m = 2.0 * kHw;
     in.lateral_W = Vec3::UnitY();
     in.mass_kg = 500.0;
+    for (Vec3& v : in.velocities_W) v.setZero();   // Eigen leaves them uninitialised
     TrackSoilOutput out;
     for (double z = 0.001; z >= -0.020 - 1e-12; z -= 0.001) {
       in.points_W[0] = Vec3(-1.0, kY, z);

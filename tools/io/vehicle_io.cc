@@ -733,14 +733,14 @@ vehicles::VehicleParams LoadVehicle(const std::string& path) {
   const StrictNode root = LoadYamlFile(path);
   const StrictMap any = root.AsMap({"name", "chassis", "axles", "steering", "wheel", "tire",
                                     "engine", "transmission", "driveline", "max_step_s",
-                                    "tracks"});
+                                    "max_soil_grid_m", "tracks"});
   // A tracked vehicle has `tracks` instead of axles, steering, wheel and tire.
   const bool tracked = any.Has("tracks");
   const StrictMap top =
       tracked ? root.AsMap({"name", "chassis", "tracks", "engine", "transmission", "driveline",
-                            "max_step_s"})
+                            "max_step_s", "max_soil_grid_m"})
               : root.AsMap({"name", "chassis", "axles", "steering", "wheel", "tire", "engine",
-                            "transmission", "driveline", "max_step_s"});
+                            "transmission", "driveline", "max_step_s", "max_soil_grid_m"});
   VehicleParams v;
   const StrictNode name = top.Required("name");
   v.name = name.AsString();
@@ -750,6 +750,13 @@ vehicles::VehicleParams LoadVehicle(const std::string& path) {
     v.max_step_s = step.AsPositive();
     if (v.max_step_s < 1e-4) {
       step.Fail("must be at least 1e-4 s, got " + FormatDouble(v.max_step_s));
+    }
+  }
+  if (top.Has("max_soil_grid_m")) {
+    const StrictNode grid = top.Required("max_soil_grid_m");
+    v.max_soil_grid_m = grid.AsPositive();
+    if (v.max_soil_grid_m < 1e-3) {   // a finer grid's tiles would not fit a world in memory
+      grid.Fail("must be at least 0.001 m, got " + FormatDouble(v.max_soil_grid_m));
     }
   }
   v.chassis = ReadChassis(top.Required("chassis"));

@@ -290,6 +290,9 @@ struct VehicleParams {
   // Largest physics step the vehicle is stable at (s); 0: any (the runner's 5 ms). The runner
   // splits its step into equal sub-steps no longer than this (docs/vehicles.md).
   double max_step_s = 0.0;
+  // Coarsest deformable-soil grid its wheels are resolved on (m); 0: the soil file's spacing.
+  // The runner uses the smaller of the two (docs/vehicles.md, "The soil grid of a small wheel").
+  double max_soil_grid_m = 0.0;
   ChassisParams chassis;
   std::vector<AxleParams> axles;       // front to rear; each axle has a left and a right wheel
   SteeringParams steering;

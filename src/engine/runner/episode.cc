@@ -474,7 +474,13 @@ void Episode::Reset(const TrialSpec& spec) {
   // Deformable patches: one SCM grid over the whole world (it only stores what wheels touch);
   // wheels over rigid patches keep the vehicle's rigid tire, rocks stay rigid bodies.
   if (HasDeformablePatches(task)) {
-    m.soil = std::make_unique<soil::ScmSoil>(m.ground, *m.soil_config);
+    // A vehicle with small wheels asks for a finer grid than the soil file's (max_soil_grid_m:
+    // the 1/10 Verti-Wheeler's 0.041 m tread would fall between 0.05 m nodes; docs/vehicles.md).
+    soil::SoilConfig grid_config = *m.soil_config;
+    if (vp.max_soil_grid_m > 0.0) {
+      grid_config.grid_spacing_m = std::min(grid_config.grid_spacing_m, vp.max_soil_grid_m);
+    }
+    m.soil = std::make_unique<soil::ScmSoil>(m.ground, grid_config);
     if (m.rules.timings != nullptr) {
       m.timed_soil = std::make_unique<TimedSoil>(m.soil.get());
       m.vehicle->SetSoil(m.timed_soil.get());
