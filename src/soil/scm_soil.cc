@@ -62,6 +62,25 @@ struct Node {
 
 static_assert(sizeof(Node) == 72, "the tile index lives in Node's padding");
 
+// Advances a contact node's Janosi shear displacement by one step of the surface's slip: restarted
+// when the node (or its block) was not in contact the step before, moved by the velocity's part
+// tangent to the surface normal nw, kept in the tangent plane and capped at jmax (where the
+// mobilised share is tabulated). Returns its length. The one shear law of wheels and belts.
+double AdvanceShear(bool restart, const Vec3& v, const Vec3& nw, double dt, double jmax,
+                    Vec3* shear) {
+  if (restart) shear->setZero();
+  const double vn = v.dot(nw);
+  const Vec3 vt = v - vn * nw;
+  *shear += vt * dt;
+  *shear -= shear->dot(nw) * nw;
+  double j_len = shear->norm();
+  if (j_len > jmax) {
+    *shear *= jmax / j_len;
+    j_len = jmax;
+  }
+  return j_len;
+}
+
 struct Tile {
   Node nodes[kTileSize * kTileSize];
   // Per tile row: an upper bound on the level of its deformable nodes (the highest level0 any
@@ -159,6 +178,21 @@ struct ScmSoil::Impl {
   double Mobilised(size_t slot, double j) const {
     if (j == shear_cap_m[slot]) return capped_mobilised[slot];
     return 1.0 - std::exp(-j / soils[slot].janosi_shear_m);
+  }
+  // A contact node's force on the surface: its stress sigma on the surface area it carries
+  // (along the surface normal nw), the damping stress on its cell (cell x cover) along the
+  // terrain normal, and the Mohr-Coulomb strength of the total stress (damping included, Chrono's
+  // order, reference §2.3) mobilised by its shear displacement of length j_len.
+  Vec3 NodeForce(const Node& n, double sigma, double sigma_damp, double area, double cell,
+                 double cover, const Vec3& nw, const Vec3& terrain_normal, double j_len) const {
+    Vec3 f = sigma * area * nw + sigma_damp * cell * cover * terrain_normal;
+    if (j_len > 0.0) {
+      const auto slot = static_cast<size_t>(n.slot);
+      const double tau_max = soils[slot].cohesion_pa + (sigma + sigma_damp) * tan_friction[slot];
+      const double tau = tau_max * Mobilised(slot, j_len);
+      f -= (tau * area / j_len) * n.shear_m;
+    }
+    return f;
   }
   int32_t step = 0;
   ScmStats stats;
@@ -505,7 +539,6 @@ WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
     Vec3 nw = -(w - w.dot(a) * a);
     nw /= nw.norm();
     const Vec3 v = wheel.velocity_W + wheel.angular_velocity_W.cross(w);
-    const double vn = v.dot(nw);  // < 0: the wheel surface moves into the soil
     // The horizontal cell under the node carries the wheel surface of area cell / cos.
     const double area = cell * h.cover / std::max(kMinCos, nw.z());
     // Viscous damping resists the soil's compression, i.e. motion along the terrain normal
@@ -517,24 +550,10 @@ WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
     const double vn_terrain = v.dot(under.normal_W);
     const double sigma_damp = std::max(-sigma, -s.damping_paspm * c_scale * vn_terrain);
     // Shear: the shear displacement restarts when a node enters contact afresh.
-    if (n.contact_step < m.step - 1) n.shear_m.setZero();
-    const Vec3 vt = v - vn * nw;
-    n.shear_m += vt * dt;
-    n.shear_m -= n.shear_m.dot(nw) * nw;
-    const double jmax = m.shear_cap_m[static_cast<size_t>(n.slot)];
-    double j_len = n.shear_m.norm();
-    if (j_len > jmax) {
-      n.shear_m *= jmax / j_len;
-      j_len = jmax;
-    }
-    Vec3 f = sigma * area * nw + sigma_damp * cell * h.cover * under.normal_W;
-    if (j_len > 0.0) {
-      // Mohr-Coulomb on the total normal stress, damping included (Chrono's order, §2.3).
-      const double tan_phi = m.tan_friction[static_cast<size_t>(n.slot)];
-      const double tau_max = s.cohesion_pa + (sigma + sigma_damp) * tan_phi;
-      const double tau = tau_max * m.Mobilised(static_cast<size_t>(n.slot), j_len);
-      f -= (tau * area / j_len) * n.shear_m;
-    }
+    const double j_len = AdvanceShear(n.contact_step < m.step - 1, v, nw, dt,
+                                      m.shear_cap_m[static_cast<size_t>(n.slot)], &n.shear_m);
+    const Vec3 f =
+        m.NodeForce(n, sigma, sigma_damp, area, cell, h.cover, nw, under.normal_W, j_len);
     force += f;
     torque += w.cross(f);
     n.contact_step = m.step;
@@ -865,27 +884,13 @@ TrackSoilOutput ScmSoil::Impl::Track(const SoilConfig& config, const TrackSoilIn
         }
         const double t = h.lon;
         const Vec3 v = (1.0 - t) * tr.velocities_W[k] + t * tr.velocities_W[k + 1];
-        const double vn = v.dot(nw);
         const double area = cell * h.cover / std::max(kMinCos, nw.z());
         const double vn_terrain = v.dot(under.normal_W);
         const double sigma_damp = std::max(-sigma, -sp.damping_paspm * c_scale * vn_terrain);
-        if (nd.contact_step < m.step - 1) nd.shear_m.setZero();
-        const Vec3 vt = v - vn * nw;
-        nd.shear_m += vt * dt;
-        nd.shear_m -= nd.shear_m.dot(nw) * nw;
-        const double jmax = m.shear_cap_m[static_cast<size_t>(nd.slot)];
-        double j_len = nd.shear_m.norm();
-        if (j_len > jmax) {
-          nd.shear_m *= jmax / j_len;
-          j_len = jmax;
-        }
-        Vec3 f = sigma * area * nw + sigma_damp * cell * h.cover * under.normal_W;
-        if (j_len > 0.0) {
-          const double tan_phi = m.tan_friction[static_cast<size_t>(nd.slot)];
-          const double tau_max = sp.cohesion_pa + (sigma + sigma_damp) * tan_phi;
-          const double tau = tau_max * m.Mobilised(static_cast<size_t>(nd.slot), j_len);
-          f -= (tau * area / j_len) * nd.shear_m;
-        }
+        const double j_len = AdvanceShear(nd.contact_step < m.step - 1, v, nw, dt,
+                                          m.shear_cap_m[static_cast<size_t>(nd.slot)], &nd.shear_m);
+        const Vec3 f =
+            m.NodeForce(nd, sigma, sigma_damp, area, cell, h.cover, nw, under.normal_W, j_len);
         out.point_force_W[k] += (1.0 - t) * f;
         out.point_force_W[k + 1] += t * f;
         nd.contact_step = m.step;
@@ -921,7 +926,6 @@ TrackSoilOutput ScmSoil::Impl::Track(const SoilConfig& config, const TrackSoilIn
         }
         const double t = h.lon;
         const Vec3 v = (1.0 - t) * tr.velocities_W[k] + t * tr.velocities_W[k + 1];
-        const double vn = v.dot(nw);
         const double area = cell * h.cover / std::max(kMinCos, nw.z());
         const double vn_terrain = v.dot(under.normal_W);
         const double sigma_damp =
@@ -972,16 +976,8 @@ TrackSoilOutput ScmSoil::Impl::Track(const SoilConfig& config, const TrackSoilIn
           out.point_sinkage_m[k + 1] = std::max(out.point_sinkage_m[k + 1], msink);
           m.contacts.push_back({h.i + kMi[q], h.j + kMj[q], mflow, &mt});
         }
-        if (last < m.step - 1) nd.shear_m.setZero();
-        const Vec3 vt = v - vn * nw;
-        nd.shear_m += vt * dt;
-        nd.shear_m -= nd.shear_m.dot(nw) * nw;
-        const double jmax = m.shear_cap_m[slot];
-        double j_len = nd.shear_m.norm();
-        if (j_len > jmax) {
-          nd.shear_m *= jmax / j_len;
-          j_len = jmax;
-        }
+        const double j_len =
+            AdvanceShear(last < m.step - 1, v, nw, dt, m.shear_cap_m[slot], &nd.shear_m);
         Vec3 f = sigma_area * nw + sigma_damp * cell * h.cover * under.normal_W;
         if (j_len > 0.0 && tau_area > 0.0) {
           f -= (tau_area * m.Mobilised(slot, j_len) / j_len) * nd.shear_m;
