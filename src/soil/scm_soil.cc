@@ -179,6 +179,22 @@ struct ScmSoil::Impl {
     if (j == shear_cap_m[slot]) return capped_mobilised[slot];
     return 1.0 - std::exp(-j / soils[slot].janosi_shear_m);
   }
+  // A contact node's normal stress at sinkage z (along the terrain normal): the elastic trial
+  // (stiffness ke on z minus its plastic sinkage) up to Bekker's pressure kb z^n of its soil; on
+  // yield Bekker's, and the plastic sinkage follows. *flow: the soil volume that move displaces
+  // per unit horizontal area (0 without yield). The one pressure law of wheels and belts.
+  double Press(Node& n, double z, double ke, double kb, double* flow) const {
+    double sigma = ke * (z - n.plastic_m);
+    double p_bekker = 0.0;
+    *flow = 0.0;
+    if (Yields(static_cast<size_t>(n.slot), kb, z, sigma, &p_bekker)) {
+      sigma = p_bekker;
+      const double plastic = z - p_bekker / ke;
+      *flow = (plastic - n.plastic_m) / static_cast<double>(n.cos_slope);
+      n.plastic_m = plastic;
+    }
+    return sigma;
+  }
   // A contact node's force on the surface: its stress sigma on the surface area it carries
   // (along the surface normal nw), the damping stress on its cell (cell x cover) along the
   // terrain normal, and the Mohr-Coulomb strength of the total stress (damping included, Chrono's
@@ -523,17 +539,8 @@ WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
     const SoilParams& s = m.soils[static_cast<size_t>(n.slot)];
     const double ca = n.cos_slope;
     const double z = ca * (n.level0_m - h.p.z());  // sinkage along the terrain normal
-    const double ke = s.elastic_stiffness_papm * k_scale;
-    double sigma = ke * (z - n.plastic_m);  // elastic trial
-    double p_bekker = 0.0;
     double flow = 0.0;
-    if (m.Yields(static_cast<size_t>(n.slot), kb[n.slot], z, sigma, &p_bekker)) {
-      // yield: plastic sinkage follows
-      sigma = p_bekker;
-      const double plastic = z - p_bekker / ke;
-      flow = (plastic - n.plastic_m) / ca;
-      n.plastic_m = plastic;
-    }
+    const double sigma = m.Press(n, z, s.elastic_stiffness_papm * k_scale, kb[n.slot], &flow);
     // Wheel surface normal at the hit point (towards the axis) and the point's velocity.
     const Vec3 w = h.p - c;
     Vec3 nw = -(w - w.dot(a) * a);
@@ -872,16 +879,9 @@ TrackSoilOutput ScmSoil::Impl::Track(const SoilConfig& config, const TrackSoilIn
         const SoilParams& sp = m.soils[static_cast<size_t>(nd.slot)];
         const double ca = nd.cos_slope;
         const double z = ca * (nd.level0_m - h.p.z());
-        const double ke = sp.elastic_stiffness_papm * k_scale;
-        double sigma = ke * (z - nd.plastic_m);
-        double p_bekker = 0.0;
         double flow = 0.0;
-        if (m.Yields(static_cast<size_t>(nd.slot), kb[nd.slot], z, sigma, &p_bekker)) {
-          sigma = p_bekker;
-          const double plastic = z - p_bekker / ke;
-          flow = (plastic - nd.plastic_m) / ca;
-          nd.plastic_m = plastic;
-        }
+        const double sigma =
+            m.Press(nd, z, sp.elastic_stiffness_papm * k_scale, kb[nd.slot], &flow);
         const double t = h.lon;
         const Vec3 v = (1.0 - t) * tr.velocities_W[k] + t * tr.velocities_W[k + 1];
         const double area = cell * h.cover / std::max(kMinCos, nw.z());
@@ -914,15 +914,7 @@ TrackSoilOutput ScmSoil::Impl::Track(const SoilConfig& config, const TrackSoilIn
         double sigma = 0.0, flow = 0.0;
         if (rep_in) {
           const double z = ca * (nd.level0_m - h.p.z());
-          const double ke = sp.elastic_stiffness_papm * k_scale;
-          sigma = ke * (z - nd.plastic_m);
-          double p_bekker = 0.0;
-          if (m.Yields(slot, kb[slot], z, sigma, &p_bekker)) {
-            sigma = p_bekker;
-            const double plastic = z - p_bekker / ke;
-            flow = (plastic - nd.plastic_m) / ca;
-            nd.plastic_m = plastic;
-          }
+          sigma = m.Press(nd, z, sp.elastic_stiffness_papm * k_scale, kb[slot], &flow);
         }
         const double t = h.lon;
         const Vec3 v = (1.0 - t) * tr.velocities_W[k] + t * tr.velocities_W[k + 1];
@@ -955,16 +947,9 @@ TrackSoilOutput ScmSoil::Impl::Track(const SoilConfig& config, const TrackSoilIn
           const SoilParams& msp = m.soils[mslot];
           const double mca = mt.cos_slope;
           const double mzs = mca * (mt.level0_m - mz);
-          const double mke = msp.elastic_stiffness_papm * k_scale;
-          double msigma = mke * (mzs - mt.plastic_m);
-          double mp_bekker = 0.0;
           double mflow = 0.0;
-          if (m.Yields(mslot, kb[mslot], mzs, msigma, &mp_bekker)) {
-            msigma = mp_bekker;
-            const double plastic = mzs - mp_bekker / mke;
-            mflow = (plastic - mt.plastic_m) / mca;
-            mt.plastic_m = plastic;
-          }
+          const double msigma =
+              m.Press(mt, mzs, msp.elastic_stiffness_papm * k_scale, kb[mslot], &mflow);
           const double mcover = std::min(1.0, (half_w - std::abs(ml)) / dx + 0.5);
           const double marea = dx * dx * mcover / std::max(kMinCos, nw.z());
           sigma_area += (msigma - sigma) * marea;
