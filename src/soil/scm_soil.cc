@@ -117,8 +117,10 @@ int FloorToInt(double x) {
 // Lowest point of the wheel cylinder (centre c, unit axis a, radius r, half width hw) on the
 // vertical line through (x, y); false if the line misses the tread. `lat` is the position
 // along the axis.
-bool WheelBottomAt(const Vec3& c, const Vec3& a, double r, double hw, double x, double y,
-                   double* z, double* lat) {
+// Always inlined: a call per scanned node costs more than the test (the wheel scan, the rim).
+[[gnu::always_inline]] inline bool WheelBottomAt(const Vec3& c, const Vec3& a, double r,
+                                                 double hw, double x, double y, double* z,
+                                                 double* lat) {
   const double ux = x - c.x(), uy = y - c.y();
   const double ua = ux * a.x() + uy * a.y();
   const double qa = 1.0 - a.z() * a.z();
@@ -497,54 +499,52 @@ WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
       Node* base = nullptr;
       int base_i = 0;
       bool looked_up = false;
-      // In an allocated tile (nothing to allocate) a node is first tested against a bound on
-      // the cylinder's height over it (below), and only the ones it leaves are intersected.
-      Node* tile_row = nullptr;   // the chunk's tile row, if the tile exists
-      if (row.inside && i >= m.i_min && i <= m.i_max) {
-        const int32_t idx =
-            m.tile_index[row.tile_base + static_cast<size_t>((i - m.i_min) >> kTileBits)];
-        if (idx >= 0) {
-          tile_row = &m.tiles[static_cast<size_t>(idx)]->nodes[(row.lj & kTileMask) * kTileSize];
-          base = tile_row + ((i - m.i_min) & kTileMask);
-          base_i = i;
-          looked_up = true;
-        }
-      }
-      const int last = chunk_end;
-      for (; i <= last; ++i) {
-        if (tile_row != nullptr) {
-          const Node& nd = base[i - base_i];
-          if (nd.slot < 0) continue;   // rigid (or beyond i_max): skipped below as well
-          // No point of the cylinder over this node is below its level (lowest_over, below).
-          const double d = z_clear - Level(nd);
-          if (d >= 0.0) {
-            const double lon = lon_row + i * lon_step;
-            if (d * d >= h2 * (r2 - lon * lon)) continue;
-          }
-        }
+      // Node i of this row: kept if the tread over it is below its level. Nodes whose cell
+      // (+-dx/2 across) overlaps the tread are pressed, each carrying the share of its cell the
+      // tread covers, so the effective width is the wheel's (sum of covers x dx = width)
+      // wherever the wheel stands between grid columns. A node just beyond the tread edge takes
+      // the cylinder's height there (the tread edge, extended by < dx/2). `n` is nullptr until
+      // the first node under the tread looks its tile up (allocating it).
+      auto consider = [&](int i, Node* n) {
         double hit_z = 0.0, lat = 0.0;
-        // Nodes whose cell (+-dx/2 across) overlaps the tread are pressed, each carrying the
-        // share of its cell the tread covers, so the effective width is the wheel's (sum of
-        // covers x dx = width) wherever the wheel stands between grid columns. A node just
-        // beyond the tread edge takes the cylinder's height there (the tread edge, extended by
-        // < dx/2).
-        if (!WheelBottomAt(c, a, r, hw_ext, i * m.dx, j * m.dx, &hit_z, &lat)) {
-          continue;
-        }
+        if (!WheelBottomAt(c, a, r, hw_ext, i * m.dx, j * m.dx, &hit_z, &lat)) return;
         const double cover = std::min(1.0, (half_w - std::abs(lat)) / m.dx + 0.5);
-        if (!(cover > 0.0)) continue;
+        if (!(cover > 0.0)) return;
         if (!looked_up) {
           base = m.At(i, j, true);
           base_i = i;
           looked_up = true;
         }
-        if (base == nullptr) continue;   // outside the world
-        Node* n = base + (i - base_i);   // beyond i_max: a rigid node (slot -1), skipped
-        if (n->slot < 0) continue;
-        if (AboveLevel(*n, hit_z)) continue;
+        if (base == nullptr) return;    // outside the world
+        if (n == nullptr) n = base + (i - base_i);  // beyond i_max: a rigid node (slot -1)
+        if (n->slot < 0) return;
+        if (AboveLevel(*n, hit_z)) return;
         const double ux = i * m.dx - c.x(), uy = j * m.dx - c.y();
         m.hits.push_back(
             {n, i, j, Vec3(i * m.dx, j * m.dx, hit_z), lat, ux * fwd.x() + uy * fwd.y(), cover});
+      };
+      // In an allocated tile (nothing to allocate) a node is first tested against the bound on
+      // the cylinder's height over it (z_clear, above; lon walked along the row), and only the
+      // nodes it leaves are intersected.
+      int32_t idx = -1;
+      if (row.inside && i >= m.i_min && i <= m.i_max) {
+        idx = m.tile_index[row.tile_base + static_cast<size_t>((i - m.i_min) >> kTileBits)];
+      }
+      if (idx >= 0) {
+        Node* nd = &m.tiles[static_cast<size_t>(idx)]
+                        ->nodes[(row.lj & kTileMask) * kTileSize + ((i - m.i_min) & kTileMask)];
+        base = nd;
+        base_i = i;
+        looked_up = true;
+        double lon = lon_row + i * lon_step;
+        for (; i <= chunk_end; ++i, ++nd, lon += lon_step) {
+          if (nd->slot < 0) continue;   // rigid (or beyond i_max): never kept
+          const double d = z_clear - Level(*nd);
+          if (d >= 0.0 && d * d >= h2 * (r2 - lon * lon)) continue;
+          consider(i, nd);
+        }
+      } else {
+        for (; i <= chunk_end; ++i) consider(i, nullptr);
       }
       i = chunk_end + 1;
     }
@@ -1120,6 +1120,7 @@ void ScmSoil::Impl::Erode(const BulldozingParams& bp) {
       // true.
       Node* nbs[4];
       Neighbours(n, w.i, w.j, false, nbs);
+#pragma GCC unroll 4
       for (int e = 0; e < 4; ++e) {
         Node* nb = nbs[e];
         const double level_nb = nb != nullptr
