@@ -10,55 +10,13 @@
 #include <string>
 #include <vector>
 
+#include "support/bmp.h"
+
 namespace vb::io {
 namespace {
 
-void PutLe(std::string& out, uint32_t v, int n) {
-  for (int i = 0; i < n; ++i) out += static_cast<char>((v >> (8 * i)) & 0xff);
-}
-
-// An uncompressed BMP: 8-bit with a palette (gray, or one colour entry) or 24-bit, rows stored
-// bottom-up (positive height) or top-down (negative height).
-std::string Bmp(int width, int height, int bits, const std::vector<uint8_t>& pixels,
-                bool top_down = false, bool colour_palette = false) {
-  const int bytes_per_pixel = bits / 8;
-  const int stride = (width * bytes_per_pixel + 3) / 4 * 4;
-  const uint32_t palette_size = bits == 8 ? 256 * 4 : 0;
-  const uint32_t offset = 14 + 40 + palette_size;
-  std::string out = "BM";
-  PutLe(out, offset + stride * height, 4);
-  PutLe(out, 0, 4);
-  PutLe(out, offset, 4);
-  PutLe(out, 40, 4);
-  PutLe(out, width, 4);
-  PutLe(out, static_cast<uint32_t>(top_down ? -height : height), 4);
-  PutLe(out, 1, 2);
-  PutLe(out, bits, 2);
-  PutLe(out, 0, 4);
-  PutLe(out, stride * height, 4);
-  PutLe(out, 2835, 4);
-  PutLe(out, 2835, 4);
-  PutLe(out, bits == 8 ? 256 : 0, 4);
-  PutLe(out, 0, 4);
-  for (uint32_t i = 0; i < palette_size / 4; ++i) {
-    PutLe(out, colour_palette && i == 7 ? 0x00ff0000u : i * 0x010101u, 4);
-  }
-  for (int k = 0; k < height; ++k) {
-    const int r = top_down ? k : height - 1 - k;
-    std::string row;
-    for (int c = 0; c < width; ++c) {
-      const uint8_t p = pixels[r * width + c];
-      if (bits == 8) {
-        row += static_cast<char>(p);
-      } else {   // blue, green, red
-        row += static_cast<char>(p / 2), row += static_cast<char>(255 - p), row += static_cast<char>(p);
-      }
-    }
-    row.resize(stride, '\0');
-    out += row;
-  }
-  return out;
-}
+using test::BmpLayout;
+using test::MakeBmp;
 
 TEST(ImageFileTest, Png16GrayRoundTripsExactly) {
   const int rows = 5, cols = 7;
@@ -93,20 +51,21 @@ TEST(ImageFileTest, Png8ColourKeepsChannelOrder) {
 TEST(ImageFileTest, BmpRowsAndPalettes) {
   const std::vector<uint8_t> px = {0, 51, 255, 102, 0, 17};
   for (bool top_down : {false, true}) {
-    const RasterImage g = DecodeRasterImage(Bmp(3, 2, 8, px, top_down));
+    const RasterImage g = DecodeRasterImage(MakeBmp(3, 2, px, BmpLayout{8, top_down}));
     ASSERT_EQ(g.channels, 1) << top_down;
     ASSERT_EQ(g.rows, 2);
     ASSERT_EQ(g.cols, 3);
     for (int i = 0; i < 6; ++i) EXPECT_EQ(g.samples[i], px[i]) << top_down << " " << i;
   }
   // A palette with one coloured entry is a colour image, as is a 24-bit BMP.
-  const RasterImage p = DecodeRasterImage(Bmp(3, 2, 8, px, false, /*colour_palette=*/true));
+  const RasterImage p =
+      DecodeRasterImage(MakeBmp(3, 2, px, BmpLayout{8, false, /*colour_palette=*/true}));
   EXPECT_EQ(p.channels, 3);
-  const RasterImage c = DecodeRasterImage(Bmp(3, 2, 24, px));
+  const RasterImage c = DecodeRasterImage(MakeBmp(3, 2, px, BmpLayout{24}));
   ASSERT_EQ(c.channels, 3);
-  EXPECT_EQ(c.At(0, 1, 0), 51);         // red
+  EXPECT_EQ(c.At(0, 1, 0), 25);         // red
   EXPECT_EQ(c.At(0, 1, 1), 255 - 51);   // green
-  EXPECT_EQ(c.At(0, 1, 2), 25);         // blue
+  EXPECT_EQ(c.At(0, 1, 2), 51);         // blue
 }
 
 TEST(ImageFileTest, TheOriginalWorldsDecode) {
@@ -122,7 +81,7 @@ TEST(ImageFileTest, RefusesWhatItCannotRead) {
     const std::vector<uint16_t> px(16, 7);
     return EncodePng16Gray(px.data(), 4, 4);
   }();
-  const std::string bmp = Bmp(3, 2, 8, {0, 1, 2, 3, 4, 5});
+  const std::string bmp = MakeBmp(3, 2, {0, 1, 2, 3, 4, 5});
   const std::vector<std::string> bad = {
       "",                                   // empty
       "GIF89a....",                         // another format
@@ -130,7 +89,7 @@ TEST(ImageFileTest, RefusesWhatItCannotRead) {
       png.substr(0, 40),                    // header only
       bmp.substr(0, 60),                    // truncated BMP header + palette
       bmp.substr(0, bmp.size() - 4),        // truncated BMP pixels
-      Bmp(3, 2, 16, {0, 1, 2, 3, 4, 5}),    // 16-bit BMP
+      MakeBmp(3, 2, {0, 1, 2, 3, 4, 5}, BmpLayout{16}),   // 16-bit
   };
   for (size_t k = 0; k < bad.size(); ++k) {
     EXPECT_THROW(DecodeRasterImage(bad[k]), ImageDecodeError) << k;
