@@ -49,7 +49,8 @@ void PngRead(png_structp png, png_bytep data, size_t length) {
 }
 
 void PngWrite(png_structp png, png_bytep data, size_t length) {
-  static_cast<PngIo*>(png_get_io_ptr(png))->out->append(reinterpret_cast<const char*>(data), length);
+  PngIo* io = static_cast<PngIo*>(png_get_io_ptr(png));
+  io->out->append(reinterpret_cast<const char*>(data), length);
 }
 
 void PngFlush(png_structp) {}
