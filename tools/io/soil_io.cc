@@ -104,11 +104,16 @@ soil::SoilConfig LoadSoil(const std::string& path) {
   return c;
 }
 
+bool NeedsSoil(const terrain::TaskSpec& task) {
+  for (terrain::SurfaceClass c : task.patches.classes) {
+    if (terrain::IsDeformable(c)) return true;
+  }
+  return false;
+}
+
 std::optional<soil::SoilConfig> LoadSoilIfNeeded(const terrain::TaskSpec& task,
                                                  const std::string& path) {
-  for (terrain::SurfaceClass c : task.patches.classes) {
-    if (terrain::IsDeformable(c)) return LoadSoil(path);
-  }
+  if (NeedsSoil(task)) return LoadSoil(path);
   return std::nullopt;
 }
 

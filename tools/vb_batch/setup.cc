@@ -97,8 +97,10 @@ int DefaultJobs() {
 
 // Loads every task once (labels, pair count, hash). A task that fails to load is kept with its
 // error: its trials are recorded as `error`, the batch goes on.
-vb::batch::MatrixSpec BuildSpec(const Options& o, const std::vector<std::string>& files) {
+vb::batch::MatrixSpec BuildSpec(const Options& o, const std::vector<std::string>& files,
+                                ParsedInputs* parsed) {
   vb::batch::MatrixSpec spec;
+  size_t parsed_task_bytes = 0;
   std::vector<double> scales;
   std::vector<double> seen_scales;   // of the tasks --scale filtered out, for the message
   if (!o.scales.empty()) {
@@ -134,6 +136,15 @@ vb::batch::MatrixSpec BuildSpec(const Options& o, const std::vector<std::string>
       continue;
     }
     t.task_fnv1a64 = vb::io::MakeProvenance(task, vb::runner::TrialSpec()).task_fnv1a64;
+    if (parsed != nullptr) {
+      const size_t bytes = task.heights.heights_m.size() * sizeof(double);
+      if (t.load_error.empty() && parsed_task_bytes + bytes <= kParsedTaskBudget_bytes) {
+        parsed_task_bytes += bytes;
+        parsed->tasks.push_back(std::make_shared<const vb::terrain::TaskSpec>(std::move(task)));
+      } else {
+        parsed->tasks.push_back(nullptr);
+      }
+    }
     spec.tasks.push_back(std::move(t));
   }
   if (spec.tasks.empty() && !seen_scales.empty()) {
@@ -166,7 +177,18 @@ vb::batch::MatrixSpec BuildSpec(const Options& o, const std::vector<std::string>
   // file is one clear error, not a batch of error trials. Names come from the listing, so
   // "../x" cannot reach outside soils/.
   NameList("--soil", o.soil, vb::io::SoilNames(DataDir()));
-  vb::io::LoadSoil(DataDir() + "/soils/" + o.soil + ".yaml");
+  vb::soil::SoilConfig soil = vb::io::LoadSoil(DataDir() + "/soils/" + o.soil + ".yaml");
+  if (parsed != nullptr) {
+    parsed->soil = std::move(soil);
+    // A vehicle file that does not load is left to the workers: each of its trials becomes an
+    // `error` record naming the file, as before.
+    for (const std::string& v : spec.vehicles) {
+      try {
+        parsed->vehicles.emplace(v, vb::io::LoadVehicle(DataDir() + "/vehicles/" + v + ".yaml"));
+      } catch (const vb::InputError&) {
+      }
+    }
+  }
   return spec;
 }
 

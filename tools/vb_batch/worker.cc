@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <memory>
 
 #include "io/batch_io.h"
 #include "io/perception_io.h"
@@ -22,7 +23,8 @@
 namespace vb_batch {
 
 [[noreturn]] void RunWorker(const Options& o, const vb::batch::MatrixTask& t,
-                            const vb::batch::TrialKey& key, const std::string& stem_path) {
+                            const ParsedInputs& parsed, const vb::batch::TrialKey& key,
+                            const std::string& stem_path) {
   int code = 0;
   try {
     if (!t.load_error.empty()) {
@@ -31,10 +33,18 @@ namespace vb_batch {
       std::_Exit(0);
     }
     try {
-      const vb::terrain::TaskSpec task = vb::io::LoadTask(t.path);
+      const std::shared_ptr<const vb::terrain::TaskSpec> parsed_task =
+          key.task_index < parsed.tasks.size() ? parsed.tasks[key.task_index] : nullptr;
+      const std::shared_ptr<const vb::terrain::TaskSpec> task_ptr =
+          parsed_task ? parsed_task
+                      : std::make_shared<const vb::terrain::TaskSpec>(vb::io::LoadTask(t.path));
+      const vb::terrain::TaskSpec& task = *task_ptr;
       const std::string vehicle_file = DataDir() + "/vehicles/" + key.vehicle + ".yaml";
       const std::string soil_file = DataDir() + "/soils/" + o.soil + ".yaml";
-      const vb::vehicles::VehicleParams params = vb::io::LoadVehicle(vehicle_file);
+      const auto parsed_vehicle = parsed.vehicles.find(key.vehicle);
+      const vb::vehicles::VehicleParams params = parsed_vehicle != parsed.vehicles.end()
+                                                     ? parsed_vehicle->second
+                                                     : vb::io::LoadVehicle(vehicle_file);
       vb::runner::TrialSpec spec;
       spec.pair_index = key.pair;
       spec.seed = key.seed;
@@ -46,7 +56,8 @@ namespace vb_batch {
       rules.trajectory_every_n_steps = o.traj_every;
       rules.perception = vb::io::ResolvePerception(key.perception, DataDir());
       const std::optional<vb::soil::SoilConfig> soil =
-          vb::io::LoadSoilIfNeeded(task, soil_file);
+          parsed.soil && vb::io::NeedsSoil(task) ? parsed.soil
+                                                             : vb::io::LoadSoilIfNeeded(task, soil_file);
       const vb::runner::TrialResult r =
           vb::runner::RunTrial(task, params, spec, rules, soil ? &*soil : nullptr, &Models());
       // Trajectory first: a record's presence implies its trajectory is complete.

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "options.h"
+#include "setup.h"
 #include "vb/batch/matrix.h"
 
 namespace vb_batch {
@@ -18,9 +19,11 @@ constexpr int kWorkerIoFailureExit = 3;
 // `stem_path` + ".json" / "_traj.csv": the runner's result, or an `error` record when the trial
 // cannot be set up (bad input only: an I/O failure is never an `error`). Exits 0 when a record was
 // written, kWorkerIoFailureExit when writing failed, 1 otherwise (the parent then records the
-// trial as `crashed`). Never returns.
+// trial as `crashed`). Inputs the parent parsed (`parsed`) are used as they are; the rest is
+// loaded here. Never returns.
 [[noreturn]] void RunWorker(const Options& o, const vb::batch::MatrixTask& t,
-                            const vb::batch::TrialKey& key, const std::string& stem_path);
+                            const ParsedInputs& parsed, const vb::batch::TrialKey& key,
+                            const std::string& stem_path);
 
 // "worker killed by signal 11 (Segmentation fault)" etc., from a waitpid status.
 std::string DescribeWaitStatus(int status);
