@@ -1,7 +1,7 @@
 # The Debian package: `cpack -G DEB` in the build directory after building writes
 # vb_<version>_<arch>.deb with everything cmake/vb_install.cmake installs, under /usr.
 # Depends are computed by dpkg-shlibdeps from the tools' shared libraries (on Debian 12:
-# libbullet3.24, libyaml-cpp0.7, libassimp5, libopencv-core406 / -imgproc406 / -imgcodecs406,
+# libbullet3.24, libyaml-cpp0.7, libassimp5, libopencv-core406 / -imgproc406, libpng16-16,
 # libhdf5-103-1 (vb_collect), libstdc++6, libc6, libgcc-s1; the test DebPackageTest checks them).
 # scripts/check_deb_clean_chroot.sh
 # installs the package with apt into a fresh Debian 12 chroot and runs the README's example.

@@ -22,7 +22,8 @@ packages=(
   libbullet-dev                  # multibody dynamics and body-body contact (float64 libraries)
   libyaml-cpp-dev                # task and vehicle files
   libassimp-dev                  # obstacle meshes (OBJ, STL, glTF): tools/io/mesh_loader.cc
-  libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev   # height images
+  libopencv-core-dev libopencv-imgproc-dev   # drawing report plots and world pictures
+  libpng-dev                     # height images and plots (PNG): tools/io/image_file.cc
   libgtest-dev                   # tests
   libhdf5-dev                    # datasets (vb_collect, docs/datasets.md): HDF5 C library
   python3 python3-venv           # the Python package's virtual environment (.venv)

@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <mutex>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 #include <Eigen/Dense>
 
@@ -132,20 +135,70 @@ double Table1D::Slope(double x) const {
   return (y[i + 1] - y[i]) / dx;
 }
 
-Table1D ShockLengthTable(const DoubleWishboneHardpoints& hp, double lo_m, double hi_m, int n) {
-  Table1D t;
-  t.x0 = lo_m;
-  t.dx = (hi_m - lo_m) / (n - 1);
-  for (const UprightSolution& s : Sample(hp, t.x0, t.dx, n, false)) t.y.push_back(s.shock_length_m);
+namespace {
+
+// Every vehicle build solves its linkages into the same tables (~19 M instructions for the HMMWV,
+// a third of a gym reset); the tables are pure functions of their arguments, so a process keeps
+// the last few it made and hands out copies: bit-identical to solving again.
+struct TableKey {
+  int kind = 0;   // 0 shock length, 1 steer angle
+  std::vector<double> args;
+  bool operator==(const TableKey& o) const { return kind == o.kind && args == o.args; }
+};
+
+TableKey MakeKey(int kind, const DoubleWishboneHardpoints& hp, double a, double b, int n) {
+  TableKey k;
+  k.kind = kind;
+  for (const Vec3* p : {&hp.spindle, &hp.uca_f, &hp.uca_b, &hp.uca_u, &hp.lca_f, &hp.lca_b,
+                        &hp.lca_u, &hp.shock_c, &hp.shock_u, &hp.tierod_c, &hp.tierod_u}) {
+    k.args.insert(k.args.end(), {p->x(), p->y(), p->z()});
+  }
+  k.args.insert(k.args.end(), {a, b, static_cast<double>(n)});
+  return k;
+}
+
+template <typename Make>
+Table1D Memoized(const TableKey& key, Make make) {
+  constexpr size_t kKept = 16;
+  static std::mutex mutex;
+  static std::vector<std::pair<TableKey, Table1D>> kept;
+  {
+    const std::lock_guard<std::mutex> lock(mutex);
+    for (const auto& [k, t] : kept) {
+      if (k == key) return t;
+    }
+  }
+  Table1D t = make();   // may throw: nothing is kept then
+  const std::lock_guard<std::mutex> lock(mutex);
+  if (kept.size() == kKept) kept.erase(kept.begin());
+  kept.emplace_back(key, t);
   return t;
 }
 
+}  // namespace
+
+Table1D ShockLengthTable(const DoubleWishboneHardpoints& hp, double lo_m, double hi_m, int n) {
+  return Memoized(MakeKey(0, hp, lo_m, hi_m, n), [&] {
+    Table1D t;
+    t.x0 = lo_m;
+    t.dx = (hi_m - lo_m) / (n - 1);
+    for (const UprightSolution& s : Sample(hp, t.x0, t.dx, n, false)) {
+      t.y.push_back(s.shock_length_m);
+    }
+    return t;
+  });
+}
+
 Table1D SteerAngleTable(const DoubleWishboneHardpoints& hp, double rack_max_m, int n) {
-  Table1D t;
-  t.x0 = -rack_max_m;
-  t.dx = 2.0 * rack_max_m / (n - 1);
-  for (const UprightSolution& s : Sample(hp, t.x0, t.dx, n, true)) t.y.push_back(s.steer_angle_rad);
-  return t;
+  return Memoized(MakeKey(1, hp, rack_max_m, 0.0, n), [&] {
+    Table1D t;
+    t.x0 = -rack_max_m;
+    t.dx = 2.0 * rack_max_m / (n - 1);
+    for (const UprightSolution& s : Sample(hp, t.x0, t.dx, n, true)) {
+      t.y.push_back(s.steer_angle_rad);
+    }
+    return t;
+  });
 }
 
 }  // namespace vb::vehicles

@@ -26,7 +26,7 @@ for f in ./usr/bin/vb_run ./usr/bin/vb_batch ./usr/bin/vb_report ./usr/bin/vb_vi
 done
 depends=$(dpkg-deb -f "$deb" Depends)
 echo "DebPackageTest: Depends: $depends"
-for p in libbullet libyaml-cpp libopencv-core libopencv-imgproc libopencv-imgcodecs libstdc++6 \
+for p in libbullet libyaml-cpp libopencv-core libopencv-imgproc libpng16 libstdc++6 \
          libc6; do
   echo "$depends" | grep -q "$p" || fail "Depends lacks $p"
 done

@@ -14,6 +14,7 @@
 
 #include <gtest/gtest.h>
 
+#include "support/bmp.h"
 #include "support/input_error.h"
 
 #include "vb/engine/error.h"
@@ -60,47 +61,6 @@ pairs:
       - [0.0, 2.5]
       - [0.0, -2.5]
 )";
-
-void PutLe(std::string& out, uint32_t v, int bytes) {
-  for (int i = 0; i < bytes; ++i) out += static_cast<char>((v >> (8 * i)) & 0xff);
-}
-
-// Uncompressed BMP (8-bit grayscale palette or 24-bit colour) written by hand, so the tests
-// need no image library: pixels[r * width + c] is the gray value of pixel (r, c), row 0 on top.
-std::string MakeBmp(int width, int height, const std::vector<uint8_t>& pixels, bool colour) {
-  const int bytes_per_pixel = colour ? 3 : 1;
-  const int stride = (width * bytes_per_pixel + 3) / 4 * 4;
-  const uint32_t palette_size = colour ? 0 : 256 * 4;
-  const uint32_t offset = 14 + 40 + palette_size;
-  std::string out = "BM";
-  PutLe(out, offset + stride * height, 4);
-  PutLe(out, 0, 4);
-  PutLe(out, offset, 4);
-  PutLe(out, 40, 4);
-  PutLe(out, width, 4);
-  PutLe(out, height, 4);  // positive: rows stored bottom-up
-  PutLe(out, 1, 2);
-  PutLe(out, 8 * bytes_per_pixel, 2);
-  PutLe(out, 0, 4);
-  PutLe(out, stride * height, 4);
-  PutLe(out, 2835, 4);
-  PutLe(out, 2835, 4);
-  PutLe(out, colour ? 0 : 256, 4);
-  PutLe(out, 0, 4);
-  for (uint32_t i = 0; i < palette_size / 4; ++i) PutLe(out, i * 0x010101u, 4);
-  for (int r = height - 1; r >= 0; --r) {
-    std::string row;
-    for (int c = 0; c < width; ++c) {
-      // Colour images get distinct channels so no decoder can mistake them for gray.
-      const uint8_t p = pixels[r * width + c];
-      row += static_cast<char>(p);
-      if (colour) row += static_cast<char>(255 - p), row += static_cast<char>(p / 2);
-    }
-    row.resize(stride, '\0');
-    out += row;
-  }
-  return out;
-}
 
 std::string ReadAll(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -211,8 +171,8 @@ TEST_F(TaskIoTest, LoadsValidTask) {
 
 TEST_F(TaskIoTest, Decodes8BitBmp) {
   // 8-bit: h = min + p / 255 * (max - min), pixel (r, c) = vertex (r, c), row 0 north.
-  std::ofstream(Path("gray.bmp"), std::ios::binary) << MakeBmp(3, 2, {0, 51, 255, 102, 0, 17},
-                                                                false);
+  std::ofstream(Path("gray.bmp"), std::ios::binary)
+      << test::MakeBmp(3, 2, {0, 51, 255, 102, 0, 17});
   const TaskSpec task = LoadTask(WriteText("task.yaml", Edit("height_image:",
                                                              "  height_image: gray.bmp")));
   ASSERT_EQ(task.heights.rows, 2);
@@ -521,8 +481,8 @@ TEST_F(TaskIoTest, ErrorUnreadableImage) {
 }
 
 TEST_F(TaskIoTest, ErrorColourImage) {
-  std::ofstream(Path("rgb.bmp"), std::ios::binary) << MakeBmp(3, 3, std::vector<uint8_t>(9, 80),
-                                                               true);
+  std::ofstream(Path("rgb.bmp"), std::ios::binary)
+      << test::MakeBmp(3, 3, std::vector<uint8_t>(9, 80), {24});
   ExpectError(Edit("height_image:", "  height_image: rgb.bmp"), 8, "world.height_image",
               "rgb.bmp' must be 8- or 16-bit single-channel grayscale");
 }

@@ -56,7 +56,9 @@ FlatResult DriveFlat(const vehicles::VehicleParams& p, SurfaceClass surface, dou
   };
   auto sinkage = [&] {
     double s = 0.0;
-    for (const vehicles::WheelState& w : v.state().wheels) s += (p.wheel.radius_m - w.center_W.z()) / 4.0;
+    for (const vehicles::WheelState& w : v.state().wheels) {
+      s += (p.wheel.radius_m - w.center_W.z()) / 4.0;
+    }
     return s;
   };
   FlatResult r;

@@ -11,9 +11,9 @@
 #include <sstream>
 
 #include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "io/image_file.h"
 #include "io/plot_png.h"
 #include "io/yaml_strict.h"
 #include "vb/engine/error.h"
@@ -403,9 +403,9 @@ void WriteTopDownPng(const terrain::TaskSpec& task, int pair, const std::string&
   }
   cv::putText(img, caption, cv::Point(8, 24), cv::FONT_HERSHEY_SIMPLEX, 0.55,
               cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
-  std::vector<uchar> bytes;
-  if (!cv::imencode(".png", img, bytes)) throw InputError(png_path, 0, "", "cannot encode PNG");
-  WriteFileAtomic(png_path, std::string(bytes.begin(), bytes.end()));
+  VB_DEMAND(img.depth() == CV_8U);
+  WriteFileAtomic(png_path, EncodePng8(img.ptr(), img.rows, img.cols, img.channels(), img.step,
+                                       /*bgr=*/true));
 }
 
 }  // namespace vb::io

@@ -9,9 +9,7 @@
 #include <sstream>
 #include <string>
 
-#include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
-
+#include "io/image_file.h"
 #include "io/yaml_strict.h"
 #include "vb/engine/error.h"
 
@@ -240,40 +238,30 @@ terrain::GrayImage ReadGrayImage(const std::string& path) {
   // FIFO or /dev/zero is refused before OpenCV blocks on it or reads it forever.
   const std::string problem = InputFileProblem(path, kMaxYamlFileBytes);
   if (!problem.empty()) throw InputError(path, 0, "", problem);
-  cv::Mat image;
+  RasterImage image;
   try {
-    image = cv::imread(path, cv::IMREAD_UNCHANGED);
-  } catch (const cv::Exception& e) {   // OpenCV's own size and format assertions
-    throw InputError(path, 0, "", "cannot be read as an image: " + e.err);
+    image = ReadRasterImage(path);
+  } catch (const ImageDecodeError& e) {
+    throw InputError(path, 0, "", std::string("cannot be read as an image: ") + e.what());
   }
-  if (image.empty()) throw InputError(path, 0, "", "cannot be read as an image");
-  if (image.channels() != 1 || image.depth() != CV_8U) {
+  if (image.channels != 1 || image.bit_depth != 8) {
     throw InputError(path, 0, "",
                      "must be an 8-bit single-channel grayscale image; it has " +
-                         std::to_string(image.channels()) + " channel(s) of " +
-                         std::to_string(8 * image.elemSize1()) + "-bit values");
+                         std::to_string(image.channels) + " channel(s) of " +
+                         std::to_string(image.bit_depth) + "-bit values");
   }
   terrain::GrayImage out;
   out.rows = image.rows;
   out.cols = image.cols;
   out.pixels.resize(static_cast<size_t>(out.rows) * out.cols);
-  for (int r = 0; r < out.rows; ++r) {
-    for (int c = 0; c < out.cols; ++c) {
-      out.pixels[static_cast<size_t>(r) * out.cols + c] = image.at<uint8_t>(r, c);
-    }
-  }
+  for (size_t i = 0; i < out.pixels.size(); ++i) out.pixels[i] = static_cast<uint8_t>(image.samples[i]);
   return out;
 }
 
 void WriteGrayImage(const terrain::GrayImage& image, const std::string& path) {
   VB_DEMAND(image.pixels.size() == static_cast<size_t>(image.rows) * image.cols);
-  cv::Mat mat(image.rows, image.cols, CV_8UC1);
-  for (int r = 0; r < image.rows; ++r) {
-    for (int c = 0; c < image.cols; ++c) mat.at<uint8_t>(r, c) = image.At(r, c);
-  }
-  std::vector<uchar> png;
-  if (!cv::imencode(".png", mat, png)) throw InputError(path, 0, "", "cannot encode the image");
-  WriteFileAtomic(path, std::string(png.begin(), png.end()));
+  WriteFileAtomic(path, EncodePng8(image.pixels.data(), image.rows, image.cols, 1,
+                                   static_cast<size_t>(image.cols)));
 }
 
 std::vector<int32_t> ReadNpyInt32(const std::string& path, int* rows, int* cols) {

@@ -7,10 +7,11 @@
 #include <stdexcept>
 
 #include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "io/image_file.h"
 #include "io/yaml_strict.h"
+#include "vb/engine/error.h"
 
 namespace vb::io {
 namespace {
@@ -106,9 +107,9 @@ void DrawLegend(cv::Mat& img, const cv::Rect& r, const std::vector<std::string>&
 }
 
 void Save(const cv::Mat& img, const std::string& path) {
-  std::vector<unsigned char> png;
-  if (!cv::imencode(".png", img, png)) throw std::runtime_error(path + ": PNG encoding failed");
-  WriteFileAtomic(path, std::string(png.begin(), png.end()));
+  VB_DEMAND(img.depth() == CV_8U);
+  WriteFileAtomic(path, EncodePng8(img.ptr(), img.rows, img.cols, img.channels(), img.step,
+                                   /*bgr=*/true));
 }
 
 }  // namespace

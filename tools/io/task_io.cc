@@ -10,9 +10,7 @@
 #include <string>
 #include <vector>
 
-#include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
-
+#include "io/image_file.h"
 #include "io/mesh_loader.h"
 #include "io/yaml_strict.h"
 #include "vb/engine/error.h"
@@ -147,25 +145,22 @@ HeightGrid ReadHeights(const StrictNode& image_node, const TaskSpec& task) {
                     std::to_string(header_rows) + " pixels; at most " +
                     std::to_string(Limits::kMaxImageSide) + " per side are supported");
   }
-  cv::Mat image;
+  RasterImage image;
   try {
-    image = cv::imread(image_path, cv::IMREAD_UNCHANGED);
-  } catch (const cv::Exception& e) {   // OpenCV's own size and format assertions
-    image_node.Fail("height image '" + image_path + "' cannot be read as an image: " + e.err);
-  }
-  if (image.empty()) {
-    image_node.Fail("height image '" + image_path + "' cannot be read as an image");
+    image = ReadRasterImage(image_path);
+  } catch (const ImageDecodeError& e) {
+    image_node.Fail("height image '" + image_path + "' cannot be read as an image: " + e.what());
   }
   if (image.rows > Limits::kMaxImageSide || image.cols > Limits::kMaxImageSide) {
     image_node.Fail("height image '" + image_path + "' is " + std::to_string(image.cols) + "x" +
                     std::to_string(image.rows) + " pixels; at most " +
                     std::to_string(Limits::kMaxImageSide) + " per side are supported");
   }
-  if (image.channels() != 1 || (image.depth() != CV_8U && image.depth() != CV_16U)) {
+  if (image.channels != 1) {
     image_node.Fail("height image '" + image_path +
                     "' must be 8- or 16-bit single-channel grayscale; it has " +
-                    std::to_string(image.channels()) + " channel(s) of " +
-                    std::to_string(8 * image.elemSize1()) + "-bit values");
+                    std::to_string(image.channels) + " channel(s) of " +
+                    std::to_string(image.bit_depth) + "-bit values");
   }
   if (image.rows < 2 || image.cols < 2) {
     image_node.Fail("height image '" + image_path + "' must be at least 2x2 pixels; it is " +
@@ -175,12 +170,11 @@ HeightGrid ReadHeights(const StrictNode& image_node, const TaskSpec& task) {
   grid.rows = image.rows;
   grid.cols = image.cols;
   grid.heights_m.resize(static_cast<size_t>(grid.rows) * grid.cols);
-  const bool wide = image.depth() == CV_16U;
-  const double pmax = wide ? 65535.0 : 255.0;
+  const double pmax = image.bit_depth == 16 ? 65535.0 : 255.0;
   const double span = task.max_height_m - task.min_height_m;
   for (int r = 0; r < grid.rows; ++r) {
     for (int c = 0; c < grid.cols; ++c) {
-      const double p = wide ? image.at<uint16_t>(r, c) : image.at<uint8_t>(r, c);
+      const double p = image.At(r, c);
       grid.heights_m[static_cast<size_t>(r) * grid.cols + c] = task.min_height_m + p / pmax * span;
     }
   }
@@ -532,20 +526,17 @@ void WriteHeightImage(const terrain::HeightGrid& heights, double min_height_m, d
   VB_DEMAND(heights.heights_m.size() == static_cast<size_t>(heights.rows) * heights.cols);
   VB_DEMAND(max_height_m >= min_height_m);
   const double span = max_height_m - min_height_m;
-  cv::Mat image(heights.rows, heights.cols, CV_16UC1);
+  std::vector<uint16_t> image(static_cast<size_t>(heights.rows) * heights.cols);
   for (int r = 0; r < heights.rows; ++r) {
     for (int c = 0; c < heights.cols; ++c) {
       // A flat range maps everything to 0; heights outside the range clamp to its ends.
       const double t = span > 0.0 ? (heights.At(r, c) - min_height_m) / span : 0.0;
       const double p = std::round(std::min(1.0, std::max(0.0, t)) * 65535.0);
-      image.at<uint16_t>(r, c) = static_cast<uint16_t>(p);
+      image[static_cast<size_t>(r) * heights.cols + c] = static_cast<uint16_t>(p);
     }
   }
-  std::vector<uchar> png;
-  if (!cv::imencode(".png", image, png)) {
-    throw InputError(path, 0, "", "cannot encode the height image as PNG");
-  }
-  WriteFileAtomic(path, std::string(png.begin(), png.end()));
+  const std::string png = EncodePng16Gray(image.data(), heights.rows, heights.cols);
+  WriteFileAtomic(path, png);
 }
 
 }  // namespace vb::io

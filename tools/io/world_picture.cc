@@ -7,9 +7,9 @@
 #include <vector>
 
 #include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "io/image_file.h"
 #include "io/yaml_strict.h"
 #include "vb/engine/error.h"
 #include "vb/terrain/grid_planner.h"
@@ -152,9 +152,9 @@ void WriteWorldPicture(const terrain::TaskSpec& task, const std::string& path) {
   cv::putText(img, title, cv::Point(w + gap + 4, h + 26), cv::FONT_HERSHEY_SIMPLEX, 0.5,
               cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
 
-  std::vector<uchar> png;
-  if (!cv::imencode(".png", img, png)) throw InputError(path, 0, "", "cannot encode the picture");
-  WriteFileAtomic(path, std::string(png.begin(), png.end()));
+  VB_DEMAND(img.depth() == CV_8U);
+  WriteFileAtomic(path, EncodePng8(img.ptr(), img.rows, img.cols, img.channels(), img.step,
+                                   /*bgr=*/true));
 }
 
 }  // namespace vb::io

@@ -57,7 +57,7 @@ namespace vb_batch {
       rules.perception = vb::io::ResolvePerception(key.perception, DataDir());
       const std::optional<vb::soil::SoilConfig> soil =
           parsed.soil && vb::io::NeedsSoil(task) ? parsed.soil
-                                                             : vb::io::LoadSoilIfNeeded(task, soil_file);
+                                                 : vb::io::LoadSoilIfNeeded(task, soil_file);
       const vb::runner::TrialResult r =
           vb::runner::RunTrial(task, params, spec, rules, soil ? &*soil : nullptr, &Models());
       // Trajectory first: a record's presence implies its trajectory is complete.
