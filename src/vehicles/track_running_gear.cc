@@ -173,11 +173,6 @@ Vec3 TrackRunningGear::RoadWheelCentre_B(int s, int k, double q) const {
   return ArmPivot_B(s, k) + TurnAboutY(wheel_from_pivot_L_, q);
 }
 
-Vec3 TrackRunningGear::RoadWheelCentre(int s, int k) const {
-  const Pose com = world_->BasePose(body_);
-  return com.position + com.rotation * (RoadWheelCentre_B(s, k, state_.arm_q[s][k]) - com_B_);
-}
-
 Vec3 TrackRunningGear::IdlerCentre_B(int s) const {
   const double dir = tp_.idler_B.x() < tp_.sprocket_B.x() ? -1.0 : 1.0;
   return Vec3(tp_.idler_B.x() + dir * state_.idler_travel_m[s], sides_[s].sign * tp_.half_gauge_m,

@@ -119,7 +119,6 @@ class TrackRunningGear {
   // Arm k's pivot and road-wheel centre in the chassis reference frame at angle q.
   Vec3 ArmPivot_B(int s, int k) const;
   Vec3 RoadWheelCentre_B(int s, int k, double q) const;
-  Vec3 RoadWheelCentre(int s, int k) const;   // world, at the current angle
   Vec3 IdlerCentre_B(int s) const;
   // Integrates arm k of side s over dt under the generalised force `torque` (all but its weight
   // and inertia) and applies its inertial reaction to the chassis.
