@@ -21,7 +21,45 @@ constexpr int kMaxObstacleContactsPerWheel = 4;
 // d(centre)/d(angle) of a point at `d` from a revolute-y pivot, in (x, z).
 Vec2 RotationRate(const Vec3& d) { return Vec2(d.z(), -d.x()); }
 
+// `d` (in the x-z plane of the chassis) turned by q about chassis y, as a revolute-y joint at
+// angle q turns its link: d/dq at 0 is RotationRate(d).
+Vec3 TurnAboutY(const Vec3& d, double q) {
+  const double c = std::cos(q), s = std::sin(q);
+  return Vec3(c * d.x() + s * d.z(), d.y(), c * d.z() - s * d.x());
+}
+
+// Arm + road wheel: the COM on the arm between pivot and wheel centre (the arm's own COM
+// halfway), from the pivot at angle 0.
+Vec3 ArmComFromPivot(const TrackParams& tp) {
+  const double m_aw = tp.arm_mass_kg + tp.road_wheel_mass_kg;
+  return -tp.arm_pivot_offset_B * (0.5 * tp.arm_mass_kg + tp.road_wheel_mass_kg) / m_aw;
+}
+
+double RoadWheelXOf(const TrackParams& tp, int side, int k) {
+  return tp.road_wheel_x_m[static_cast<size_t>(k)] +
+         (side == 1 ? tp.right_road_wheel_offset_x_m : 0.0);
+}
+
 }  // namespace
+
+int ChassisArmMasses(const TrackParams& tp, LumpedMass* out) {
+  const int n_rw = static_cast<int>(tp.road_wheel_x_m.size());
+  VB_DEMAND(n_rw >= 2 && n_rw <= kMaxRoadWheels);
+  const Vec3 com_from_pivot = ArmComFromPivot(tp);
+  int n = 0;
+  for (int s = 0; s < 2; ++s) {
+    const double y = (s == 0 ? 1.0 : -1.0) * tp.half_gauge_m;
+    for (int k = 0; k < n_rw; ++k) {
+      const Vec3 pivot_B =
+          Vec3(RoadWheelXOf(tp, s, k), y, tp.road_wheel_z_m) + tp.arm_pivot_offset_B;
+      out[n].com_B = pivot_B + com_from_pivot;
+      out[n].mass_kg = tp.arm_mass_kg + tp.road_wheel_mass_kg;
+      out[n].inertia_kgm2 = tp.arm_inertia_kgm2;
+      ++n;
+    }
+  }
+  return n;
+}
 
 TrackRunningGear::TrackRunningGear(const VehicleParams& params, const Vec3& com_B,
                                    std::vector<engine::MultiBodyLinkSpec>* links)
@@ -37,11 +75,18 @@ TrackRunningGear::TrackRunningGear(const VehicleParams& params, const Vec3& com_
       n_rw_ * tp_.road_wheel_inertia_kgm2 * rw_ratio * rw_ratio +
       tp_.idler_inertia_kgm2 * idler_ratio * idler_ratio +
       DrivelineInertiaPerDrivenWheel(params.driveline, 1);
-  // Arm + road wheel as one link: COM on the arm between pivot and wheel centre.
-  const double m_arm = tp_.arm_mass_kg, m_rw = tp_.road_wheel_mass_kg, m_aw = m_arm + m_rw;
+  // Arm + road wheel as one member: COM on the arm between pivot and wheel centre; its inertia
+  // about the pivot axis (the damping's implicit form keeps the earlier link model's lever, the
+  // pivot-to-wheel distance).
+  const double m_aw = tp_.arm_mass_kg + tp_.road_wheel_mass_kg;
   const Vec3 wheel_from_pivot = -tp_.arm_pivot_offset_B;
-  const Vec3 com_from_pivot = wheel_from_pivot * (0.5 * m_arm + m_rw) / m_aw;
-  for (int k = 0; k < n_rw_; ++k) wheel_from_com_L_[k] = wheel_from_pivot - com_from_pivot;
+  const Vec3 com_from_pivot = ArmComFromPivot(tp_);
+  wheel_from_pivot_L_ = wheel_from_pivot;
+  com_from_pivot_L_ = com_from_pivot;
+  arm_mass_kg_ = m_aw;
+  arm_pivot_inertia_kgm2_ = m_aw * com_from_pivot.squaredNorm() + tp_.arm_inertia_kgm2.y();
+  arm_damping_inertia_kgm2_ =
+      m_aw * wheel_from_pivot.squaredNorm() + tp_.arm_inertia_kgm2.y();
 
   for (int s = 0; s < 2; ++s) {
     Side& side = sides_[s];
@@ -56,29 +101,16 @@ TrackRunningGear::TrackRunningGear(const VehicleParams& params, const Vec3& com_
     sprocket.inertia_kgm2 = Vec3(1.0, spin_inertia, 1.0);
     side.sprocket_link = static_cast<int>(links->size());
     links->push_back(sprocket);
-
-    for (int k = 0; k < n_rw_; ++k) {
-      engine::MultiBodyLinkSpec arm;
-      arm.parent = -1;
-      arm.joint = engine::JointType::kRevolute;
-      arm.axis_P = Vec3::UnitY();
-      const Vec3 wheel_B(RoadWheelX(s, k), y, tp_.road_wheel_z_m);
-      arm.parent_com_to_joint_P = wheel_B + tp_.arm_pivot_offset_B - com_B;
-      arm.joint_to_com_L = com_from_pivot;
-      arm.mass_kg = m_aw;
-      arm.inertia_kgm2 = tp_.arm_inertia_kgm2;
-      arm.limit_lower = -tp_.rebound_angle_rad - kArmHardLimitBeyondStops_rad;
-      arm.limit_upper = tp_.bump_angle_rad + kArmHardLimitBeyondStops_rad;
-      side.arm_link[k] = static_cast<int>(links->size());
-      links->push_back(arm);
-    }
   }
 
   // Belt at design, per side (the right side's road wheels may sit at other x): rest length
   // from the tensioner's preload; torsion preloads that hold the arms at design under the static
   // load on flat ground (unless the file gives one); rigid-contact samples per ground-run segment.
+  // (the chassis and the running gear's members; the belts and idlers are left out, as they
+  // always were for this preload)
   vehicle_mass_kg_ = params.chassis.mass_kg;
-  for (const engine::MultiBodyLinkSpec& l : *links) vehicle_mass_kg_ += l.mass_kg;
+  for (int s = 0; s < 2; ++s) vehicle_mass_kg_ += tp_.sprocket_mass_kg;
+  for (int i = 0; i < 2 * n_rw_; ++i) vehicle_mass_kg_ += m_aw;
   const double wheel_load_n = vehicle_mass_kg_ * kGravity / (2.0 * n_rw_);
   const double spacing = tp_.contact_spacing_m;
   int offset = 0;
@@ -130,18 +162,15 @@ double TrackRunningGear::SprocketSpeed(int side) const {
   return world_->JointVelocity(body_, sides_[side].sprocket_link);
 }
 
-double TrackRunningGear::RoadWheelX(int side, int k) const {
-  return tp_.road_wheel_x_m[static_cast<size_t>(k)] +
-         (side == 1 ? tp_.right_road_wheel_offset_x_m : 0.0);
+double TrackRunningGear::RoadWheelX(int side, int k) const { return RoadWheelXOf(tp_, side, k); }
+
+Vec3 TrackRunningGear::ArmPivot_B(int s, int k) const {
+  return Vec3(RoadWheelX(s, k), sides_[s].sign * tp_.half_gauge_m, tp_.road_wheel_z_m) +
+         tp_.arm_pivot_offset_B;
 }
 
-double TrackRunningGear::ArmAngle(int side, int wheel) const {
-  return world_->JointPosition(body_, sides_[side].arm_link[wheel]);
-}
-
-Vec3 TrackRunningGear::RoadWheelCentre(int s, int k) const {
-  const Pose arm = world_->LinkPose(body_, sides_[s].arm_link[k]);
-  return arm.position + arm.rotation * wheel_from_com_L_[k];
+Vec3 TrackRunningGear::RoadWheelCentre_B(int s, int k, double q) const {
+  return ArmPivot_B(s, k) + TurnAboutY(wheel_from_pivot_L_, q);
 }
 
 Vec3 TrackRunningGear::IdlerCentre_B(int s) const {
@@ -160,7 +189,55 @@ void TrackRunningGear::Synchronize(const DriverInputs& inputs, const terrain::Te
       world_->BaseLinearVelocity(body_).dot(com.rotation * Vec3::UnitX());
   ComputeWheelTorques(params_, inputs.throttle, sprocket_speeds_, driven_, ground_speed, dt,
                       &state_.powertrain, &sprocket_torques_);
+  // The chassis's acceleration for the arms: the last step's (their inertia in the chassis frame
+  // lags it by one step; the arms are ~1 % of the vehicle's mass each).
+  const Vec3 v = world_->BaseLinearVelocity(body_), w = world_->BaseAngularVelocity(body_);
+  accel_com_W_.setZero();
+  alpha_W_.setZero();
+  if (state_.has_last_base_velocity) {
+    accel_com_W_ = (v - state_.last_base_velocity_W) / dt;
+    alpha_W_ = (w - state_.last_base_omega_W) / dt;
+  }
+  state_.last_base_velocity_W = v;
+  state_.last_base_omega_W = w;
+  state_.has_last_base_velocity = true;
+  gravity_W_ = world_->Gravity();
   for (int s = 0; s < 2; ++s) SynchronizeSide(s, inputs, terrain, soil, dt, wheels);
+}
+
+void TrackRunningGear::AdvanceArm(int s, int k, double torque, double dt) {
+  const Pose com = world_->BasePose(body_);
+  const Mat3 R = com.rotation.toRotationMatrix();
+  const Vec3 w_com = world_->BaseAngularVelocity(body_);
+  const Vec3 axis_W = R.col(1);
+  const double q = state_.arm_q[s][k], qd = state_.arm_qd[s][k];
+  const Vec3 pivot_W = com.position + R * (ArmPivot_B(s, k) - com_B_);
+  const Vec3 c_W = R * TurnAboutY(com_from_pivot_L_, q);   // pivot to the member's COM
+  // The pivot's acceleration; the member's weight and inertia in the chassis frame.
+  const Vec3 r = pivot_W - com.position;
+  const Vec3 a_pivot = accel_com_W_ + alpha_W_.cross(r) + w_com.cross(w_com.cross(r));
+  const double m = arm_mass_kg_, inertia = arm_pivot_inertia_kgm2_;
+  const double load = torque + axis_W.dot(c_W.cross(m * (gravity_W_ - a_pivot))) -
+                      inertia * alpha_W_.dot(axis_W);
+  double qd_new = qd + load / inertia * dt;
+  double q_new = q + qd_new * dt;
+  // The hard travel limits beyond the stops: inelastic.
+  const double lo = -tp_.rebound_angle_rad - kArmHardLimitBeyondStops_rad;
+  const double hi = tp_.bump_angle_rad + kArmHardLimitBeyondStops_rad;
+  if (q_new > hi || q_new < lo) {
+    q_new = std::clamp(q_new, lo, hi);
+    qd_new = 0.0;
+  }
+  state_.arm_q[s][k] = q_new;
+  state_.arm_qd[s][k] = qd_new;
+  // The chassis carries the member's mass at design: it gets the member's external forces (the
+  // caller applied them) less what accelerates the member relative to it (tangential,
+  // centripetal and Coriolis terms at the COM, and its own spin about the axis).
+  const double qdd = (qd_new - qd) / dt;
+  const Vec3 t_W = axis_W.cross(c_W);   // COM velocity per unit rate
+  const Vec3 a_rel = qdd * t_W - qd * qd * c_W + 2.0 * qd * w_com.cross(t_W);
+  world_->ApplyBaseForce(body_, -m * a_rel, pivot_W + c_W);
+  world_->ApplyBaseTorque(body_, -tp_.arm_inertia_kgm2.y() * qdd * axis_W);
 }
 
 void TrackRunningGear::SynchronizeSide(int s, const DriverInputs& inputs,
@@ -180,15 +257,23 @@ void TrackRunningGear::SynchronizeSide(int s, const DriverInputs& inputs,
 
   // Wheel centres (world and chassis frame).
   Vec3 centre_W[kMaxBeltWheels];
-  centre_W[0] = ref_W + R * Vec3(tp_.sprocket_B.x(), y, tp_.sprocket_B.z());
-  for (int k = 0; k < n_rw_; ++k) centre_W[k + 1] = RoadWheelCentre(s, k);
-  centre_W[idler] = ref_W + R * IdlerCentre_B(s);
   BeltLoop loop;
   loop.n = n_pts;
-  for (int i = 0; i < n_pts; ++i) {
-    const Vec3 c_B = R.transpose() * (centre_W[i] - ref_W);
-    loop.centre[i] = Vec2(c_B.x(), c_B.z());
+  const Vec3 sprocket_B(tp_.sprocket_B.x(), y, tp_.sprocket_B.z());
+  centre_W[0] = ref_W + R * sprocket_B;
+  loop.centre[0] = Vec2(sprocket_B.x(), sprocket_B.z());
+  Vec3 pivot_W[kMaxRoadWheels];
+  for (int k = 0; k < n_rw_; ++k) {
+    const Vec3 pivot_B = ArmPivot_B(s, k);
+    const Vec3 c_B = pivot_B + TurnAboutY(wheel_from_pivot_L_, state_.arm_q[s][k]);
+    pivot_W[k] = ref_W + R * pivot_B;
+    centre_W[k + 1] = ref_W + R * c_B;
+    pre_step_centre_W_[s][k] = centre_W[k + 1];
+    loop.centre[k + 1] = Vec2(c_B.x(), c_B.z());
   }
+  const Vec3 idler_B = IdlerCentre_B(s);
+  centre_W[idler] = ref_W + R * idler_B;
+  loop.centre[idler] = Vec2(idler_B.x(), idler_B.z());
 
   // Tensioner and belt: the idler carrier is light and stiffly held, so it is solved
   // quasi-statically (backward Euler on the massless carrier with its damper): tensioner force
@@ -214,33 +299,35 @@ void TrackRunningGear::SynchronizeSide(int s, const DriverInputs& inputs,
   const double tension = tp_.belt_stiffness_npm * std::max(0.0, length - belt_rest_length_m_[s]);
   state_.tension_n[s] = tension;
   const Vec2 pivot_offset(tp_.arm_pivot_offset_B.x(), tp_.arm_pivot_offset_B.z());
-  const double m_aw = tp_.arm_mass_kg + tp_.road_wheel_mass_kg;
-  const double lever = std::hypot(pivot_offset.x(), pivot_offset.y());
-  // damping implicit on the arm's inertia about the pivot plus its share of the chassis
-  const double arm_inertia = m_aw * lever * lever + tp_.arm_inertia_kgm2.y();
+  // Arm torques: torsion bar (damping implicit on the arm's inertia about the pivot), stops and
+  // the belt's pull; the ground's is added below.
+  double arm_torque[kMaxRoadWheels];
   for (int k = 0; k < n_rw_; ++k) {
-    const int link = side.arm_link[k];
     const Vec2 pivot = Vec2(RoadWheelX(s, k), tp_.road_wheel_z_m) + pivot_offset;
     const Vec2 d = loop.centre[k + 1] - pivot;
     const double belt = -tension * grad[k + 1].dot(Vec2(d.y(), -d.x()));
-    const double q = world_->JointPosition(body_, link);
-    const double qd = world_->JointVelocity(body_, link);
+    const double q = state_.arm_q[s][k];
+    const double qd = state_.arm_qd[s][k];
     double torque = preload_nm_[s][k] - tp_.torsion_stiffness_nmprad * q -
-                    ImplicitDamping(tp_.torsion_damping_nmsprad, dt, arm_inertia) * qd + belt;
+                    ImplicitDamping(tp_.torsion_damping_nmsprad, dt, arm_damping_inertia_kgm2_) *
+                        qd +
+                    belt;
     if (q > tp_.bump_angle_rad) torque -= tp_.stop_stiffness_nmprad * (q - tp_.bump_angle_rad);
     if (q < -tp_.rebound_angle_rad) {
       torque += tp_.stop_stiffness_nmprad * (-tp_.rebound_angle_rad - q);
     }
-    world_->AddJointForce(body_, link, torque);
+    arm_torque[k] = torque;
   }
   // Ground run: bottom points and their structure velocities.
   const double h = tp_.shoe_height_m;
   run_[0].p_W = centre_W[0] - (tp_.sprocket_radius_m + h) * up_W;
   run_[0].v_W = v_com + w_com.cross(run_[0].p_W - com.position);
+  const Vec3 axis_W = R.col(1);
   for (int k = 0; k < n_rw_; ++k) {
     RunPoint& rp = run_[k + 1];
     rp.p_W = centre_W[k + 1] - (tp_.road_wheel_radius_m + h) * up_W;
-    rp.v_W = world_->LinkPointVelocity(body_, side.arm_link[k], rp.p_W);
+    rp.v_W = v_com + w_com.cross(rp.p_W - com.position) +
+             state_.arm_qd[s][k] * axis_W.cross(rp.p_W - pivot_W[k]);
   }
   run_[idler].p_W = centre_W[idler] - (tp_.idler_radius_m + h) * up_W;
   run_[idler].v_W = v_com + w_com.cross(run_[idler].p_W - com.position);
@@ -356,17 +443,17 @@ void TrackRunningGear::SynchronizeSide(int s, const DriverInputs& inputs,
   }
 
   // Apply: along the belt to the chassis and against the sprocket, the rest to the body under
-  // the point.
+  // the point (an arm passes it to the chassis, which carries the arm's mass, and turns under its
+  // moment about the pivot).
   for (int i = 0; i < n_pts; ++i) {
     const RunPoint& rp = run_[i];
     const Vec3& rest = rp.force_W;
-    world_->ApplyBaseForce(body_, rp.along_W, rp.p_W);
-    if (i == 0 || i == idler) {   // sprocket and idler: on the chassis
-      world_->ApplyBaseForce(body_, rest, rp.p_W);
-    } else {
-      world_->ApplyLinkForce(body_, side.arm_link[i - 1], rest, rp.p_W);
+    world_->ApplyBaseForce(body_, rp.along_W + rest, rp.p_W);
+    if (i != 0 && i != idler) {
+      arm_torque[i - 1] += axis_W.dot((rp.p_W - pivot_W[i - 1]).cross(rest));
     }
   }
+  for (int k = 0; k < n_rw_; ++k) AdvanceArm(s, k, arm_torque[k], dt);
   thrust_n_[s] = belt_force;
   world_->AddJointForce(body_, side.sprocket_link,
                         sprocket_torques_[s] - belt_force * tp_.sprocket_radius_m);
@@ -390,16 +477,21 @@ void TrackRunningGear::SynchronizeSide(int s, const DriverInputs& inputs,
 void TrackRunningGear::UpdateWheelStates(std::vector<WheelState>* wheels) const {
   const Pose com = world_->BasePose(body_);
   const Vec3 fwd = com.rotation * Vec3::UnitX();
+  const Vec3 axis_W = com.rotation * Vec3::UnitY();
+  const Vec3 v_com = world_->BaseLinearVelocity(body_);
+  const Vec3 w_com = world_->BaseAngularVelocity(body_);
   for (int s = 0; s < 2; ++s) {
     const double u = SprocketSpeed(s) * tp_.sprocket_radius_m;
     for (int k = 0; k < n_rw_; ++k) {
       WheelState& ws = (*wheels)[static_cast<size_t>(2 * k + s)];
-      const int link = sides_[s].arm_link[k];
-      ws.center_W = RoadWheelCentre(s, k);
+      const double q = state_.arm_q[s][k];
+      const Vec3 pivot_W = com.position + com.rotation * (ArmPivot_B(s, k) - com_B_);
+      ws.center_W = com.position + com.rotation * (RoadWheelCentre_B(s, k, q) - com_B_);
       ws.spin_radps = u / tp_.road_wheel_radius_m;
-      const double q = world_->JointPosition(body_, link);
       ws.suspension_travel_m = q * std::abs(tp_.arm_pivot_offset_B.x());
-      const double v = world_->LinkPointVelocity(body_, link, ws.center_W).dot(fwd);
+      const double v = (v_com + w_com.cross(ws.center_W - com.position) +
+                        state_.arm_qd[s][k] * axis_W.cross(ws.center_W - pivot_W))
+                           .dot(fwd);
       ws.longitudinal_slip = (u - v) / std::max({std::abs(u), std::abs(v), 0.1});
     }
   }
@@ -414,12 +506,13 @@ void TrackRunningGear::AddObstacleContacts(const terrain::ObstacleField& obstacl
   for (int s = 0; s < 2; ++s) {
     for (int k = 0; k < n_rw_; ++k) {
       contacts->clear();
-      terrain::WheelObstacleContacts(RoadWheelCentre(s, k), axis, r, 0.5 * tp_.shoe_width_m,
-                                     obstacles, tp_.friction, kMaxObstacleContactsPerWheel,
-                                     scratch, contacts);
+      terrain::WheelObstacleContacts(pre_step_centre_W_[s][k], axis, r,
+                                     0.5 * tp_.shoe_width_m, obstacles, tp_.friction,
+                                     kMaxObstacleContactsPerWheel, scratch, contacts);
+      // on the chassis, which carries the arm: the arm does not yield to rocks and trees
       for (const terrain::BodyContact& c : *contacts) {
-        world_->AddContact({body_, sides_[s].arm_link[k], c.point_W, c.normal_W, c.depth_m,
-                            c.friction, c.obstacle_tag});
+        world_->AddContact({body_, -1, c.point_W, c.normal_W, c.depth_m, c.friction,
+                            c.obstacle_tag});
       }
     }
   }

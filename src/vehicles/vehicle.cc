@@ -195,20 +195,24 @@ Vehicle::Vehicle(const VehicleParams& params, const terrain::Terrain& terrain, c
   if (params_.tracked) {
     // The belts and the idlers (with their tensioner carriers) ride with the chassis: point
     // masses on each side, the belt at its loop's centre (its motion along the loop is the
-    // sprocket's spin inertia, track_running_gear.cc).
+    // sprocket's spin inertia, track_running_gear.cc). So do the road-wheel arms, at design
+    // (their swing is vb's, track_running_gear.h).
     const TrackParams& tp = params_.tracks;
     const Vec3 belt_B(0.5 * (tp.sprocket_B.x() + tp.idler_B.x()), tp.half_gauge_m,
                       0.5 * (tp.sprocket_B.z() + tp.road_wheel_z_m));
     const Vec3 idler_B(tp.idler_B.x(), tp.half_gauge_m, tp.idler_B.z());
     const double idler_kg = tp.idler_mass_kg + tp.tensioner_carrier_mass_kg;
-    const std::pair<Vec3, double> points[4] = {
-        {belt_B, tp.belt_mass_kg}, {Vec3(belt_B.x(), -belt_B.y(), belt_B.z()), tp.belt_mass_kg},
-        {idler_B, idler_kg}, {Vec3(idler_B.x(), -idler_B.y(), idler_B.z()), idler_kg}};
+    LumpedMass points[4 + 2 * kMaxRoadWheels];
+    points[0] = {belt_B, tp.belt_mass_kg, Vec3::Zero()};
+    points[1] = {Vec3(belt_B.x(), -belt_B.y(), belt_B.z()), tp.belt_mass_kg, Vec3::Zero()};
+    points[2] = {idler_B, idler_kg, Vec3::Zero()};
+    points[3] = {Vec3(idler_B.x(), -idler_B.y(), idler_B.z()), idler_kg, Vec3::Zero()};
+    const int n_points = 4 + ChassisArmMasses(tp, points + 4);
     double m = ch.mass_kg;
     Vec3 mc = ch.mass_kg * ch.com_B;
-    for (const auto& pm : points) {
-      m += pm.second;
-      mc += pm.second * pm.first;
+    for (int i = 0; i < n_points; ++i) {
+      m += points[i].mass_kg;
+      mc += points[i].mass_kg * points[i].com_B;
     }
     const Vec3 com = mc / m;
     auto parallel_axis = [](double mass, const Vec3& d) {  // diagonal terms only
@@ -216,7 +220,10 @@ Vehicle::Vehicle(const VehicleParams& params, const terrain::Terrain& terrain, c
                   mass * (d.x() * d.x() + d.y() * d.y()));
     };
     ch.inertia_kgm2 += parallel_axis(ch.mass_kg, ch.com_B - com);
-    for (const auto& pm : points) ch.inertia_kgm2 += parallel_axis(pm.second, pm.first - com);
+    for (int i = 0; i < n_points; ++i) {
+      ch.inertia_kgm2 +=
+          points[i].inertia_kgm2 + parallel_axis(points[i].mass_kg, points[i].com_B - com);
+    }
     ch.mass_kg = m;
     ch.com_B = com;
     in_->com_B = com;

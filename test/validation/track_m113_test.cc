@@ -133,9 +133,9 @@ TEST(TrackM113, TopSpeedFromEngineAndGearing) {
   st.base_velocity_W = Vec3(v0, 0.0, 0.0);
   for (size_t i = 0; i < st.qdot.size(); ++i) st.qdot[i] = 0.0;
   const vehicles::TrackRunningGear& gear = *sim.vehicle->track();
-  (void)gear;
-  // the sprockets are the first link of each side (track_running_gear.cc)
-  st.qdot[0] = st.qdot[1 + p.tracks.road_wheel_x_m.size()] = v0 / p.tracks.sprocket_radius_m;
+  for (int s = 0; s < 2; ++s) {
+    st.qdot[static_cast<size_t>(gear.SprocketLink(s))] = v0 / p.tracks.sprocket_radius_m;
+  }
   sim.world.SetState(sim.vehicle->body(), st);
   in.throttle = 1.0;
   sim.Run(40.0, in);

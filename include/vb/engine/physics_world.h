@@ -90,6 +90,7 @@ class PhysicsWorld {
   // that turns slowly under a vehicle settled on flat ground (validation tests); the terrain
   // contact never reads gravity, so the two are the same experiment.
   void SetGravity(const Vec3& gravity_W);
+  Vec3 Gravity() const;
 
   // Articulated bodies. Link i of the returned body is links[i].
   MultiBodyId AddMultiBody(const MultiBodyBaseSpec& base, const std::vector<MultiBodyLinkSpec>& links);
@@ -103,8 +104,9 @@ class PhysicsWorld {
   // Forces for the next Step only (cleared after it). World-frame force applied at a world point.
   void ApplyLinkForce(MultiBodyId mb, int link, const Vec3& force_W, const Vec3& point_W);
   void ApplyBaseForce(MultiBodyId mb, const Vec3& force_W, const Vec3& point_W);
-  // World-frame pure torque on a link, for the next Step only.
+  // World-frame pure torque on a link or the base, for the next Step only.
   void ApplyLinkTorque(MultiBodyId mb, int link, const Vec3& torque_W);
+  void ApplyBaseTorque(MultiBodyId mb, const Vec3& torque_W);
   // Generalised joint force (N for prismatic, N·m for revolute), for the next Step only.
   void AddJointForce(MultiBodyId mb, int link, double force);
   // Implicit joint motors, solved inside the constraint solver, so they hold static loads without

@@ -5,7 +5,14 @@
 // and the idler on a carrier that slides along chassis x, pushed away from the sprocket by the
 // tensioner; the carrier is light and stiffly held, so its travel is solved quasi-statically
 // each step (tensioner force = the belt's pull on it) rather than as a link.
-//   base --revolute y--> road-wheel arm x N  (trailing arm, torsion bar at the pivot)
+// The road-wheel arms (trailing arms, torsion bar at the pivot) are not links: they are members
+// of the chassis whose angle vb integrates itself (docs/vehicles.md, "The road-wheel arms").
+// The chassis carries each arm's mass rigidly at its design place (ChassisArmMasses, added to
+// the base by vehicle.cc); each arm's angle q is a second-order state, I_p q'' = torsion bar +
+// belt + ground force + weight and inertia in the chassis's (last step's) acceleration, and the
+// chassis receives the ground force at its point minus what accelerates the arm relative to it
+// (momentum balance), so the pair moves as the two-body system does to first order in the
+// arm-to-chassis mass ratio (~1 %). The hard travel limits are inelastic clamps.
 // The track is an elastic belt around sprocket, road wheels and idler (track_belt.h): its tension
 // pulls the wheels and the idler (generalised forces), the tensioner balances it.
 // Ground contact: the belt's ground run is the polyline through the bottoms of the sprocket, the
@@ -37,25 +44,43 @@ namespace vb::vehicles {
 
 constexpr int kMaxRoadWheels = kMaxBeltWheels - 2;
 
+// A mass the chassis carries for the running gear: an arm with its road wheel at design.
+struct LumpedMass {
+  Vec3 com_B = Vec3::Zero();          // chassis reference frame
+  double mass_kg = 0.0;
+  Vec3 inertia_kgm2 = Vec3::Zero();   // principal moments about its COM (chassis axes)
+};
+// The arms with their road wheels, both sides (left first), at design: the chassis base must
+// carry them (vehicle.cc adds them to its mass and inertia). Returns how many were written
+// (2 x road wheels, at most 2 * kMaxRoadWheels).
+int ChassisArmMasses(const TrackParams& tp, LumpedMass* out);
+
 class TrackRunningGear {
  public:
-  // Internal state a snapshot keeps: powertrain, the bristles of the rigid contact samples.
+  // Internal state a snapshot keeps: powertrain, the bristles of the rigid contact samples, the
+  // arms' angles and rates, the chassis velocity of the last step (its acceleration for the arms).
   struct State {
     PowertrainState powertrain;
     std::vector<Vec3> bristle_W;    // per side and sample
     double tension_n[2] = {0.0, 0.0};
     double idler_travel_m[2] = {0.0, 0.0};   // carrier travel away from the sprocket
+    double arm_q[2][kMaxRoadWheels] = {};    // rad, + lifts the wheel, 0 at design
+    double arm_qd[2][kMaxRoadWheels] = {};   // rad/s
+    Vec3 last_base_velocity_W = Vec3::Zero();   // at the COM, at the last Synchronize
+    Vec3 last_base_omega_W = Vec3::Zero();
+    bool has_last_base_velocity = false;
   };
 
-  // Appends both tracks' links (left side first) to `links`; the base's COM is com_B (chassis
-  // frame). Call Attach once the multibody exists.
+  // Appends both tracks' links (the two sprockets, left first) to `links`; the base's COM is
+  // com_B (chassis frame) and it carries the arms (ChassisArmMasses). Call Attach once the
+  // multibody exists.
   TrackRunningGear(const VehicleParams& params, const Vec3& com_B,
                    std::vector<engine::MultiBodyLinkSpec>* links);
   void Attach(engine::PhysicsWorld* world, engine::MultiBodyId body);
 
   // This step's forces: belt tension, torsion bars, tensioner, ground contact, sprocket drive
-  // and brakes. Fills the road wheels' contact fields of `wheels` (axle-major: station 0 left,
-  // station 0 right, ...).
+  // and brakes; advances the arms by dt. Fills the road wheels' contact fields of `wheels`
+  // (axle-major: station 0 left, station 0 right, ...).
   void Synchronize(const DriverInputs& inputs, const terrain::Terrain& terrain,
                    soil::SoilContact* soil, double dt, std::vector<WheelState>* wheels);
   // Post-step read-out of the road wheels (spin, slip, travel, centre).
@@ -68,7 +93,9 @@ class TrackRunningGear {
   void set_state(const State& s) { state_ = s; }
   double SprocketSpeed(int side) const;   // rad/s, + forward
   double BeltTension(int side) const { return state_.tension_n[side]; }
-  double ArmAngle(int side, int wheel) const;
+  double ArmAngle(int side, int wheel) const { return state_.arm_q[side][wheel]; }
+  // The sprocket's link in the multibody (its joint velocity is the sprocket's spin).
+  int SprocketLink(int side) const { return sides_[side].sprocket_link; }
   // Ground force along the belt on one track in the last Synchronize (N, + forward): the thrust.
   double GroundThrust(int side) const { return thrust_n_[side]; }
   double TorsionPreload(int side, int wheel) const { return preload_nm_[side][wheel]; }
@@ -80,7 +107,6 @@ class TrackRunningGear {
   struct Side {
     double sign = 1.0;                  // +1 left, -1 right
     int sprocket_link = -1;
-    int arm_link[kMaxRoadWheels] = {};
   };
   // Ground-run points of one side: 0 sprocket, 1..n road wheels, n + 1 idler.
   struct RunPoint {
@@ -90,8 +116,13 @@ class TrackRunningGear {
   };
   void SynchronizeSide(int s, const DriverInputs& inputs, const terrain::Terrain& terrain,
                        soil::SoilContact* soil, double dt, std::vector<WheelState>* wheels);
-  Vec3 RoadWheelCentre(int s, int k) const;
+  // Arm k's pivot and road-wheel centre in the chassis reference frame at angle q.
+  Vec3 ArmPivot_B(int s, int k) const;
+  Vec3 RoadWheelCentre_B(int s, int k, double q) const;
   Vec3 IdlerCentre_B(int s) const;
+  // Integrates arm k of side s over dt under the generalised force `torque` (all but its weight
+  // and inertia) and applies its inertial reaction to the chassis.
+  void AdvanceArm(int s, int k, double torque, double dt);
 
   const TrackParams& tp_;
   const VehicleParams& params_;
@@ -100,7 +131,11 @@ class TrackRunningGear {
   Vec3 com_B_ = Vec3::Zero();
   int n_rw_ = 0;
   Side sides_[2];
-  Vec3 wheel_from_com_L_[kMaxRoadWheels];   // road-wheel centre from the arm link's COM
+  Vec3 wheel_from_pivot_L_ = Vec3::Zero();  // road-wheel centre from the pivot at angle 0
+  Vec3 com_from_pivot_L_ = Vec3::Zero();    // arm + road wheel COM from the pivot at angle 0
+  double arm_mass_kg_ = 0.0;                // arm + road wheel
+  double arm_pivot_inertia_kgm2_ = 0.0;     // about the pivot axis
+  double arm_damping_inertia_kgm2_ = 0.0;   // for the implicit torsion damping
   double preload_nm_[2][kMaxRoadWheels] = {};
   double belt_rest_length_m_[2] = {0.0, 0.0};
   double vehicle_mass_kg_ = 0.0;
@@ -110,6 +145,9 @@ class TrackRunningGear {
   double thrust_n_[2] = {0.0, 0.0};
   // Per-step scratch.
   RunPoint run_[kMaxBeltWheels];
+  Vec3 pre_step_centre_W_[2][kMaxRoadWheels];   // road-wheel centres before this step's advance
+  Vec3 accel_com_W_ = Vec3::Zero(), alpha_W_ = Vec3::Zero();   // the chassis's, lagged a step
+  Vec3 gravity_W_ = Vec3::Zero();
   std::vector<double> sprocket_speeds_, sprocket_torques_;
   std::vector<bool> driven_;
 };

@@ -180,6 +180,8 @@ void PhysicsWorld::SetGravity(const Vec3& gravity_W) {
   impl_->world.setGravity(btVector3(gravity_W.x(), gravity_W.y(), gravity_W.z()));
 }
 
+Vec3 PhysicsWorld::Gravity() const { return FromBt(impl_->world.getGravity()); }
+
 PhysicsWorld::PhysicsWorld(double gravity_mps2) : impl_(std::make_unique<Impl>()) {
   impl_->world.setGravity(btVector3(0, 0, -gravity_mps2));
   // No collision pairs ever exist (every collider is in no group), so Bullet's broadphase and
@@ -391,6 +393,10 @@ void PhysicsWorld::ApplyLinkForce(MultiBodyId id, int link, const Vec3& force_W,
 
 void PhysicsWorld::ApplyLinkTorque(MultiBodyId id, int link, const Vec3& torque_W) {
   impl_->Get(id).mb->addLinkTorque(link, ToBt(torque_W));
+}
+
+void PhysicsWorld::ApplyBaseTorque(MultiBodyId id, const Vec3& torque_W) {
+  impl_->Get(id).mb->addBaseTorque(ToBt(torque_W));
 }
 
 void PhysicsWorld::ApplyBaseForce(MultiBodyId id, const Vec3& force_W, const Vec3& point_W) {
