@@ -51,6 +51,8 @@ struct Node {
   double base_m = 0.0;        // initial terrain level
   double level0_m = 0.0;      // undisturbed level: base plus deposits minus erosion
   double plastic_m = 0.0;     // plastic sinkage along the terrain normal
+  double sink_m = 0.0;        // plastic_m / cos_slope, kept with it (the level's drop below
+                              // level0: Level() without a division, bit for bit the same)
   Vec3 shear_m = Vec3::Zero();// Janosi shear displacement (world vector, in the contact plane)
   float cos_slope = 1.0f;     // z of the undeformed terrain normal
   int8_t slot = -1;           // soil slot (SoilSlot), -1: rigid or outside the world
@@ -60,7 +62,7 @@ struct Node {
   int32_t tile = -1;          // allocation index of the node's tile (in the struct's padding)
 };
 
-static_assert(sizeof(Node) == 72, "the tile index lives in Node's padding");
+static_assert(sizeof(Node) == 80, "the tile index lives in Node's padding");
 
 // Advances a contact node's Janosi shear displacement by one step of the surface's slip: restarted
 // when the node (or its block) was not in contact the step before, moved by the velocity's part
@@ -89,13 +91,16 @@ struct Tile {
   double row_top_m[kTileSize];
 };
 
-double Level(const Node& n) { return n.level0_m - n.plastic_m / n.cos_slope; }
+// The node's current level: level0 - plastic / cos_slope (sink_m holds the quotient).
+double Level(const Node& n) { return n.level0_m - n.sink_m; }
 
-// z >= Level(n), without the division when z is at or above the undisturbed level (the level is
-// never above level0 while the plastic sinkage is >= 0; the sign test keeps it exact).
-bool AboveLevel(const Node& n, double z) {
-  if (z >= n.level0_m && n.plastic_m >= 0.0) return true;
-  return z >= Level(n);
+// z >= Level(n).
+bool AboveLevel(const Node& n, double z) { return z >= Level(n); }
+
+// Sets a node's plastic sinkage and the cached sink_m = plastic / cos_slope with it.
+void SetPlastic(Node& n, double plastic) {
+  n.plastic_m = plastic;
+  n.sink_m = plastic / n.cos_slope;
 }
 
 // static_cast<int>(std::ceil(x)) and (std::floor(x)) for x within the range of int: the
@@ -112,8 +117,10 @@ int FloorToInt(double x) {
 // Lowest point of the wheel cylinder (centre c, unit axis a, radius r, half width hw) on the
 // vertical line through (x, y); false if the line misses the tread. `lat` is the position
 // along the axis.
-bool WheelBottomAt(const Vec3& c, const Vec3& a, double r, double hw, double x, double y,
-                   double* z, double* lat) {
+// Always inlined: a call per scanned node costs more than the test (the wheel scan, the rim).
+[[gnu::always_inline]] inline bool WheelBottomAt(const Vec3& c, const Vec3& a, double r,
+                                                 double hw, double x, double y, double* z,
+                                                 double* lat) {
   const double ux = x - c.x(), uy = y - c.y();
   const double ua = ux * a.x() + uy * a.y();
   const double qa = 1.0 - a.z() * a.z();
@@ -191,7 +198,7 @@ struct ScmSoil::Impl {
       sigma = p_bekker;
       const double plastic = z - p_bekker / ke;
       *flow = (plastic - n.plastic_m) / static_cast<double>(n.cos_slope);
-      n.plastic_m = plastic;
+      SetPlastic(n, plastic);
     }
     return sigma;
   }
@@ -213,12 +220,17 @@ struct ScmSoil::Impl {
   int32_t step = 0;
   ScmStats stats;
   double max_raise_m = 0.0;   // highest level0 - base of any node so far (scan bound)
+  // Raises (dh > 0) or lowers a node's undisturbed level. Lowering cannot raise a maximum (every
+  // node's level0 - base is <= max_raise_m and its level0 <= its tile row's top, and
+  // level0 + dh <= level0 for dh <= 0 in floating point), so only a raise updates them.
   void Raise(Node* n, double dh) {
     n->level0_m += dh;
-    max_raise_m = std::max(max_raise_m, n->level0_m - n->base_m);
-    Tile& t = *tiles[static_cast<size_t>(n->tile)];
-    double& top = t.row_top_m[(n - t.nodes) >> kTileBits];
-    top = std::max(top, n->level0_m);
+    if (dh > 0.0) {
+      max_raise_m = std::max(max_raise_m, n->level0_m - n->base_m);
+      Tile& t = *tiles[static_cast<size_t>(n->tile)];
+      double& top = t.row_top_m[(n - t.nodes) >> kTileBits];
+      top = std::max(top, n->level0_m);
+    }
   }
 
   // This step's contacts, wheel by wheel (ranges into `contacts`).
@@ -359,7 +371,7 @@ struct ScmSoil::Impl {
   std::vector<char> hit_rep_in;   // belt_node_stride 2: the pressed node itself in contact
   void DepositOnRim(const Patch& patch, size_t begin, double volume);
   std::vector<double> room;
-  std::vector<bool> full_scratch;
+  std::vector<char> full_scratch;
 };
 
 ScmSoil::ScmSoil(const terrain::Terrain& terrain, const SoilConfig& config)
@@ -450,6 +462,16 @@ WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
 
   // (1) Geometry: the lowest point of the cylinder above each node, kept if below the soil.
   const double hw_ext = half_w + 0.5 * m.dx;
+  // A point of the cylinder's surface with |lat| <= hw_ext at horizontal distance lon from the
+  // axle's vertical plane (lon = offset . fwd) lies at or above
+  //   c.z - |a.z| hw_ext - sqrt(1 - a.z^2) sqrt(r^2 - lon^2)
+  // (its radial part is lon fwd + s u, u = a x fwd with u.z = -sqrt(1 - a.z^2), s^2 = r^2 - lon^2;
+  // none where |lon| > r). So WheelBottomAt's hit over a node at level L is at or above L when
+  // d = c.z - |a.z| hw_ext - 1e-6 - L >= 0 and d^2 >= (1 - a.z^2)(r^2 - lon^2): such a node is
+  // rejected without the intersection (1e-6 m of slack, far above the rounding of the hit).
+  const double z_clear = c.z() - std::abs(a.z()) * hw_ext - 1e-6;
+  const double h2 = 1.0 - a.z() * a.z(), r2 = r * r;
+  const double lon_step = m.dx * fwd.x();
   const double lat_reach = hw_ext + std::abs(a.z()) * std::sqrt(r * r + hw_ext * hw_ext) + 1e-6;
   m.hits.clear();
   for (int j = j_lo; j <= j_hi; ++j) {
@@ -468,6 +490,8 @@ WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
       row_lo = std::max(row_lo, FloorToInt(x0 / m.dx) - 1);
       row_hi = std::min(row_hi, CeilToInt(x1 / m.dx) + 1);
     }
+    const Impl::GridRow row = m.Row(j);
+    const double lon_row = (j * m.dx - c.y()) * fwd.y() - c.x() * fwd.x();  // lon at i = 0
     int i = row_lo;
     while (i <= row_hi) {
       const int chunk_end =
@@ -475,31 +499,54 @@ WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
       Node* base = nullptr;
       int base_i = 0;
       bool looked_up = false;
-      for (; i <= chunk_end; ++i) {
+      // Node i of this row: kept if the tread over it is below its level. Nodes whose cell
+      // (+-dx/2 across) overlaps the tread are pressed, each carrying the share of its cell the
+      // tread covers, so the effective width is the wheel's (sum of covers x dx = width)
+      // wherever the wheel stands between grid columns. A node just beyond the tread edge takes
+      // the cylinder's height there (the tread edge, extended by < dx/2). `n` is nullptr until
+      // the first node under the tread looks its tile up (allocating it).
+      auto consider = [&](int i, Node* n) {
         double hit_z = 0.0, lat = 0.0;
-        // Nodes whose cell (+-dx/2 across) overlaps the tread are pressed, each carrying the
-        // share of its cell the tread covers, so the effective width is the wheel's (sum of
-        // covers x dx = width) wherever the wheel stands between grid columns. A node just
-        // beyond the tread edge takes the cylinder's height there (the tread edge, extended by
-        // < dx/2).
-        if (!WheelBottomAt(c, a, r, hw_ext, i * m.dx, j * m.dx, &hit_z, &lat)) {
-          continue;
-        }
+        if (!WheelBottomAt(c, a, r, hw_ext, i * m.dx, j * m.dx, &hit_z, &lat)) return;
         const double cover = std::min(1.0, (half_w - std::abs(lat)) / m.dx + 0.5);
-        if (!(cover > 0.0)) continue;
+        if (!(cover > 0.0)) return;
         if (!looked_up) {
           base = m.At(i, j, true);
           base_i = i;
           looked_up = true;
         }
-        if (base == nullptr) continue;   // outside the world
-        Node* n = base + (i - base_i);   // beyond i_max: a rigid node (slot -1), skipped
-        if (n->slot < 0) continue;
-        if (AboveLevel(*n, hit_z)) continue;
+        if (base == nullptr) return;    // outside the world
+        if (n == nullptr) n = base + (i - base_i);  // beyond i_max: a rigid node (slot -1)
+        if (n->slot < 0) return;
+        if (AboveLevel(*n, hit_z)) return;
         const double ux = i * m.dx - c.x(), uy = j * m.dx - c.y();
         m.hits.push_back(
             {n, i, j, Vec3(i * m.dx, j * m.dx, hit_z), lat, ux * fwd.x() + uy * fwd.y(), cover});
+      };
+      // In an allocated tile (nothing to allocate) a node is first tested against the bound on
+      // the cylinder's height over it (z_clear, above; lon walked along the row), and only the
+      // nodes it leaves are intersected.
+      int32_t idx = -1;
+      if (row.inside && i >= m.i_min && i <= m.i_max) {
+        idx = m.tile_index[row.tile_base + static_cast<size_t>((i - m.i_min) >> kTileBits)];
       }
+      if (idx >= 0) {
+        Node* nd = &m.tiles[static_cast<size_t>(idx)]
+                        ->nodes[(row.lj & kTileMask) * kTileSize + ((i - m.i_min) & kTileMask)];
+        base = nd;
+        base_i = i;
+        looked_up = true;
+        double lon = lon_row + i * lon_step;
+        for (; i <= chunk_end; ++i, ++nd, lon += lon_step) {
+          if (nd->slot < 0) continue;   // rigid (or beyond i_max): never kept
+          const double d = z_clear - Level(*nd);
+          if (d >= 0.0 && d * d >= h2 * (r2 - lon * lon)) continue;
+          consider(i, nd);
+        }
+      } else {
+        for (; i <= chunk_end; ++i) consider(i, nullptr);
+      }
+      i = chunk_end + 1;
     }
   }
   if (m.hits.empty()) return out;
@@ -593,8 +640,20 @@ void ScmSoil::Impl::DepositOnRim(const Patch& patch, size_t begin, double volume
     return;
   }
   room.assign(n, 1e300);
+  // A wheel's tread (|lat| <= half width) lies within lat_reach of the centre's vertical plane
+  // across the axle (as in WheelContact's rows): a rim node further out is not under it.
+  const Vec3& ca = patch.center;
+  const Vec3& ax = patch.axis;
+  const double lat_reach =
+      patch.half_width +
+      std::abs(ax.z()) * std::sqrt(patch.radius * patch.radius + patch.half_width * patch.half_width) +
+      1e-6;
   for (size_t k = 0; k < n; ++k) {
     const Work& w = rim[begin + k];
+    if (!patch.belt &&
+        std::abs((w.i * dx - ca.x()) * ax.x() + (w.j * dx - ca.y()) * ax.y()) > lat_reach) {
+      continue;
+    }
     double z = 0.0, lat = 0.0, t = 0.0;
     const bool under = patch.belt ? BeltBottomAt(patch.center, patch.belt_end, patch.axis,
                                                  patch.half_width, w.i * dx, w.j * dx, &z, &t,
@@ -606,8 +665,8 @@ void ScmSoil::Impl::DepositOnRim(const Patch& patch, size_t begin, double volume
   }
   double remaining = volume;
   size_t open = n;
-  std::vector<bool>& full = full_scratch;
-  full.assign(n, false);
+  std::vector<char>& full = full_scratch;
+  full.assign(n, 0);
   while (open > 0 && remaining > 0.0) {
     const double share = remaining / static_cast<double>(open);
     bool capped = false;
@@ -615,7 +674,7 @@ void ScmSoil::Impl::DepositOnRim(const Patch& patch, size_t begin, double volume
       if (full[k] || room[k] >= share) continue;
       Raise(rim[begin + k].node, room[k]);
       remaining -= room[k];
-      full[k] = true;
+      full[k] = 1;
       --open;
       capped = true;
     }
@@ -992,6 +1051,7 @@ void ScmSoil::EndStep(double /*dt*/) {
   const BulldozingParams& bp = config_.bulldozing;
   if (bp.enabled) {
     m.rim.clear();
+    const int32_t step = m.step;   // a local: the node writes below cannot change it
     for (const Impl::Patch& patch : m.patches) {
       // Rim: untouched deformable 4-neighbours of this patch's contact nodes, in contact order.
       double volume = 0.0;  // displaced height summed over nodes (all cells have equal area)
@@ -1003,11 +1063,11 @@ void ScmSoil::EndStep(double /*dt*/) {
         m.Neighbours(ct.node, ct.i, ct.j, true, nbs);
         for (int e = 0; e < 4; ++e) {
           Node* nb = nbs[e];
-          if (nb == nullptr || nb->slot < 0 || nb->contact_step == m.step ||
-              nb->mark_step == m.step) {
+          if (nb == nullptr || nb->slot < 0 || nb->contact_step == step ||
+              nb->mark_step == step) {
             continue;
           }
-          nb->mark_step = m.step;
+          nb->mark_step = step;
           m.rim.push_back({ct.i + kDi[e], ct.j + kDj[e], 0, nb});
         }
       }
@@ -1031,25 +1091,28 @@ void ScmSoil::EndStep(double /*dt*/) {
 void ScmSoil::Impl::Erode(const BulldozingParams& bp) {
   const double threshold = dx * std::tan(bp.erosion_angle_rad);
   active.clear();
-  auto enqueue = [&](std::vector<Work>* list, Node* n, int i, int j, int ring) {
-    if (n->queue_stamp == queue_stamp) return;
-    n->queue_stamp = queue_stamp;
+  // Locals for what the node writes below cannot change (the compiler cannot know that).
+  const int32_t cur_step = step;
+  const int propagations = bp.erosion_propagations;
+  auto enqueue = [](std::vector<Work>* list, int32_t stamp, Node* n, int i, int j, int ring) {
+    if (n->queue_stamp == stamp) return;
+    n->queue_stamp = stamp;
     list->push_back({i, j, ring, n});
   };
   ++queue_stamp;
-  for (const Work& w : rim) enqueue(&active, w.node, w.i, w.j, w.ring);
+  for (const Work& w : rim) enqueue(&active, queue_stamp, w.node, w.i, w.j, w.ring);
   for (const Work& w : pending) {
     Node* n = At(w.i, w.j, false);
-    if (n != nullptr) enqueue(&active, n, w.i, w.j, w.ring);
+    if (n != nullptr) enqueue(&active, queue_stamp, n, w.i, w.j, w.ring);
   }
   pending.clear();
   for (int pass = 0; pass < bp.erosion_iterations && !active.empty(); ++pass) {
-    ++queue_stamp;
+    const int32_t stamp = ++queue_stamp;
     next.clear();
+    stats.eroded_node_visits += static_cast<long>(active.size());
     for (const Work& w : active) {
       Node* n = w.node;
-      ++stats.eroded_node_visits;
-      if (n->slot < 0 || n->contact_step == step) continue;
+      if (n->slot < 0 || n->contact_step == cur_step) continue;
       double level_n = Level(*n);
       // one look-up for the neighbour's level and, if it moves, the node itself (its tile is
       // allocated only then: most neighbours are within the threshold). The four neighbours lie
@@ -1057,22 +1120,25 @@ void ScmSoil::Impl::Erode(const BulldozingParams& bp) {
       // true.
       Node* nbs[4];
       Neighbours(n, w.i, w.j, false, nbs);
+#pragma GCC unroll 4
       for (int e = 0; e < 4; ++e) {
-        const int ni = w.i + kDi[e], nj = w.j + kDj[e];
         Node* nb = nbs[e];
-        const double dy =
-            level_n - (nb != nullptr ? Level(*nb) : terrain.Height(ni * dx, nj * dx));
+        const double level_nb = nb != nullptr
+                                    ? Level(*nb)
+                                    : terrain.Height((w.i + kDi[e]) * dx, (w.j + kDj[e]) * dx);
+        const double dy = level_n - level_nb;
         if (std::abs(dy) <= threshold) continue;
+        const int ni = w.i + kDi[e], nj = w.j + kDj[e];
         if (nb == nullptr) nb = At(ni, nj, true);
-        if (nb == nullptr || nb->slot < 0 || nb->contact_step == step) continue;
+        if (nb == nullptr || nb->slot < 0 || nb->contact_step == cur_step) continue;
         const double q = 0.5 * (std::abs(dy) - threshold) / 4.0;
         const double moved = dy > 0.0 ? q : -q;  // from the higher node to the lower one
         Raise(n, -moved);
         Raise(nb, moved);
         level_n = Level(*n);
         if (q > kErosionSettled_m) {
-          enqueue(&next, n, w.i, w.j, w.ring);
-          if (w.ring < bp.erosion_propagations) enqueue(&next, nb, ni, nj, w.ring + 1);
+          enqueue(&next, stamp, n, w.i, w.j, w.ring);
+          if (w.ring < propagations) enqueue(&next, stamp, nb, ni, nj, w.ring + 1);
         }
       }
     }
@@ -1101,7 +1167,7 @@ double ScmSoil::CompactedVolume_m3() const {
   double sum = 0.0;
   for (const auto& tile : impl_->tiles) {
     for (const Node& n : tile->nodes) {
-      if (n.slot >= 0) sum += n.plastic_m / n.cos_slope;
+      if (n.slot >= 0) sum += n.sink_m;
     }
   }
   return sum * impl_->dx * impl_->dx;
