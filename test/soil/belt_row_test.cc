@@ -104,7 +104,9 @@ TEST(BeltRowTest, AgreesWithTheSegmentGeometryOnADiagonal) {
       const bool inside = t_ref >= 0.0 && t_ref <= t_end && std::abs(l_ref) < hw + 0.5 * kDx;
       const bool near_edge = std::abs(t_ref) < 1e-9 || std::abs(t_ref - t_end) < 1e-9 ||
                              std::abs(std::abs(l_ref) - (hw + 0.5 * kDx)) < 1e-9;
-      if (!near_edge) EXPECT_EQ(c, inside) << "i " << i << " j " << j;
+      if (!near_edge) {
+        EXPECT_EQ(c, inside) << "i " << i << " j " << j;
+      }
       if (c) {
         ++covered;
         EXPECT_NEAR(cover, std::min(1.0, (hw - std::abs(l_ref)) / kDx + 0.5), 1e-9);

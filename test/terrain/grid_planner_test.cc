@@ -233,7 +233,9 @@ TEST(GoalDistanceFieldTest, PathsAsCheapAsAStarOnRandomGrids) {
       EXPECT_EQ(f->front(), start);
       EXPECT_EQ(f->back(), goal);
       for (size_t i = 1; i < f->size(); ++i) EXPECT_FALSE(g.Occupied((*f)[i].row, (*f)[i].col));
-      if (!g.Occupied(start.row, start.col)) EXPECT_NEAR(field.CostToGoal(start), PathCost(*f), 1e-9);
+      if (!g.Occupied(start.row, start.col)) {
+        EXPECT_NEAR(field.CostToGoal(start), PathCost(*f), 1e-9);
+      }
     }
   }
 }

@@ -38,7 +38,7 @@ TEST(ScaleTest, EveryLengthScalesAndCellGridsStayTheSame) {
     }
     // the terrain surface is the unscaled one shrunk: h_s(f p) = f h(p)
     const Terrain t0(task), t1(s);
-    for (const Vec2 p : {Vec2(3.3, -7.1), Vec2(-40.2, 22.7), Vec2(60.0, 0.0)}) {
+    for (const Vec2& p : {Vec2(3.3, -7.1), Vec2(-40.2, 22.7), Vec2(60.0, 0.0)}) {
       EXPECT_NEAR(t1.Height(f * p.x(), f * p.y()), f * t0.Height(p.x(), p.y()), 1e-9);
     }
     EXPECT_DOUBLE_EQ(s.rocks[3].x_m, task.rocks[3].x_m * f);

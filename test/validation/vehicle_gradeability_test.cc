@@ -61,7 +61,9 @@ TEST(VehicleGradeability, SteepestSlopeFromRest) {
                 mu, sim, 100.0 * std::tan(sim * kDeg), estimate, bound);
     EXPECT_LE(sim, bound);
     EXPECT_NEAR(sim, estimate, 2.0);
-    if (mu > 0.8) EXPECT_GE(sim, 31.0);
+    if (mu > 0.8) {
+      EXPECT_GE(sim, 31.0);
+    }
   }
 }
 
