@@ -14,6 +14,7 @@
 
 #include "vb/engine/error.h"
 #include "vb/soil/belt_row.h"
+#include "vb/soil/wheel_bottom.h"
 #include "vb/soil/pow_lower_bound.h"
 
 namespace vb::soil {
@@ -112,26 +113,6 @@ int CeilToInt(double x) {
 int FloorToInt(double x) {
   const int t = static_cast<int>(x);
   return t - (t > x ? 1 : 0);
-}
-
-// Lowest point of the wheel cylinder (centre c, unit axis a, radius r, half width hw) on the
-// vertical line through (x, y); false if the line misses the tread. `lat` is the position
-// along the axis.
-// Always inlined: a call per scanned node costs more than the test (the wheel scan, the rim).
-[[gnu::always_inline]] inline bool WheelBottomAt(const Vec3& c, const Vec3& a, double r,
-                                                 double hw, double x, double y, double* z,
-                                                 double* lat) {
-  const double ux = x - c.x(), uy = y - c.y();
-  const double ua = ux * a.x() + uy * a.y();
-  const double qa = 1.0 - a.z() * a.z();
-  const double qb = -2.0 * a.z() * ua;
-  const double qc = ux * ux + uy * uy - ua * ua - r * r;
-  const double disc = qb * qb - 4.0 * qa * qc;
-  if (disc <= 0.0 || qa < 1e-6) return false;
-  const double t = (-qb - std::sqrt(disc)) / (2.0 * qa);
-  *lat = ua + t * a.z();
-  *z = c.z() + t;
-  return std::abs(*lat) <= hw;
 }
 
 // Bottom of a flat belt segment from a to b (across it: half width hw along lat, which may be
@@ -462,15 +443,8 @@ WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
 
   // (1) Geometry: the lowest point of the cylinder above each node, kept if below the soil.
   const double hw_ext = half_w + 0.5 * m.dx;
-  // A point of the cylinder's surface with |lat| <= hw_ext at horizontal distance lon from the
-  // axle's vertical plane (lon = offset . fwd) lies at or above
-  //   c.z - |a.z| hw_ext - sqrt(1 - a.z^2) sqrt(r^2 - lon^2)
-  // (its radial part is lon fwd + s u, u = a x fwd with u.z = -sqrt(1 - a.z^2), s^2 = r^2 - lon^2;
-  // none where |lon| > r). So WheelBottomAt's hit over a node at level L is at or above L when
-  // d = c.z - |a.z| hw_ext - 1e-6 - L >= 0 and d^2 >= (1 - a.z^2)(r^2 - lon^2): such a node is
-  // rejected without the intersection (1e-6 m of slack, far above the rounding of the hit).
-  const double z_clear = c.z() - std::abs(a.z()) * hw_ext - 1e-6;
-  const double h2 = 1.0 - a.z() * a.z(), r2 = r * r;
+  // Nodes the cylinder clears are rejected without the intersection (wheel_bottom.h).
+  const WheelHeightBound bound(c, a, r, hw_ext);
   const double lon_step = m.dx * fwd.x();
   const double lat_reach = hw_ext + std::abs(a.z()) * std::sqrt(r * r + hw_ext * hw_ext) + 1e-6;
   m.hits.clear();
@@ -524,8 +498,8 @@ WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
             {n, i, j, Vec3(i * m.dx, j * m.dx, hit_z), lat, ux * fwd.x() + uy * fwd.y(), cover});
       };
       // In an allocated tile (nothing to allocate) a node is first tested against the bound on
-      // the cylinder's height over it (z_clear, above; lon walked along the row), and only the
-      // nodes it leaves are intersected.
+      // the cylinder's height over it (lon walked along the row), and only the nodes it leaves
+      // are intersected.
       int32_t idx = -1;
       if (row.inside && i >= m.i_min && i <= m.i_max) {
         idx = m.tile_index[row.tile_base + static_cast<size_t>((i - m.i_min) >> kTileBits)];
@@ -539,8 +513,7 @@ WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
         double lon = lon_row + i * lon_step;
         for (; i <= chunk_end; ++i, ++nd, lon += lon_step) {
           if (nd->slot < 0) continue;   // rigid (or beyond i_max): never kept
-          const double d = z_clear - Level(*nd);
-          if (d >= 0.0 && d * d >= h2 * (r2 - lon * lon)) continue;
+          if (bound.Clears(Level(*nd), lon)) continue;
           consider(i, nd);
         }
       } else {
