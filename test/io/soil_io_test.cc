@@ -2,6 +2,8 @@
 // input names file, line and key.
 #include "io/soil_io.h"
 
+#include <unistd.h>
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -35,8 +37,12 @@ std::string WriteVariant(const std::string& from, const std::string& to, int* li
   EXPECT_EQ(text.find(from, pos + 1), std::string::npos) << from;
   *line = 1 + static_cast<int>(std::count(text.begin(), text.begin() + pos, '\n'));
   text.replace(pos, from.size(), to);
-  const std::string path =
-      (std::filesystem::temp_directory_path() / ("vb_soil_io_test_" + std::to_string(*line) + ".yaml")).string();
+  // The process id in the name: ctest runs each test in its own process, in parallel, and two
+  // tests may edit the same line (a shared name once made one read the other's half-written file).
+  const std::string path = (std::filesystem::temp_directory_path() /
+                            ("vb_soil_io_test_" + std::to_string(::getpid()) + "_" +
+                             std::to_string(*line) + ".yaml"))
+                               .string();
   std::ofstream(path) << text;
   return path;
 }
