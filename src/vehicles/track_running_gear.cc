@@ -40,6 +40,13 @@ double RoadWheelXOf(const TrackParams& tp, int side, int k) {
          (side == 1 ? tp.right_road_wheel_offset_x_m : 0.0);
 }
 
+// Pivot of road-wheel arm k of `side` (0 left, +y; 1 right) in the chassis frame.
+Vec3 ArmPivotOf(const TrackParams& tp, int side, int k) {
+  return Vec3(RoadWheelXOf(tp, side, k), (side == 0 ? 1.0 : -1.0) * tp.half_gauge_m,
+              tp.road_wheel_z_m) +
+         tp.arm_pivot_offset_B;
+}
+
 }  // namespace
 
 int ChassisArmMasses(const TrackParams& tp, LumpedMass* out) {
@@ -48,11 +55,8 @@ int ChassisArmMasses(const TrackParams& tp, LumpedMass* out) {
   const Vec3 com_from_pivot = ArmComFromPivot(tp);
   int n = 0;
   for (int s = 0; s < 2; ++s) {
-    const double y = (s == 0 ? 1.0 : -1.0) * tp.half_gauge_m;
     for (int k = 0; k < n_rw; ++k) {
-      const Vec3 pivot_B =
-          Vec3(RoadWheelXOf(tp, s, k), y, tp.road_wheel_z_m) + tp.arm_pivot_offset_B;
-      out[n].com_B = pivot_B + com_from_pivot;
+      out[n].com_B = ArmPivotOf(tp, s, k) + com_from_pivot;
       out[n].mass_kg = tp.arm_mass_kg + tp.road_wheel_mass_kg;
       out[n].inertia_kgm2 = tp.arm_inertia_kgm2;
       ++n;
@@ -165,8 +169,7 @@ double TrackRunningGear::SprocketSpeed(int side) const {
 double TrackRunningGear::RoadWheelX(int side, int k) const { return RoadWheelXOf(tp_, side, k); }
 
 Vec3 TrackRunningGear::ArmPivot_B(int s, int k) const {
-  return Vec3(RoadWheelX(s, k), sides_[s].sign * tp_.half_gauge_m, tp_.road_wheel_z_m) +
-         tp_.arm_pivot_offset_B;
+  return ArmPivotOf(tp_, s, k);
 }
 
 Vec3 TrackRunningGear::RoadWheelCentre_B(int s, int k, double q) const {
