@@ -17,6 +17,13 @@ double ImplicitDamping(double c, double dt, double mass_kg) { return c / (1.0 + 
 constexpr double kArmHardLimitBeyondStops_rad = 0.15;
 constexpr double kIdlerTravel_m = 0.15;
 constexpr int kMaxObstacleContactsPerWheel = 4;
+// An obstacle contact is the arm's if the arm's swing moves the wheel's contact point along the
+// contact normal by at least this much per radian (the wheel's lever is 0.32 m on the M113: a
+// normal within ~70 degrees of the swing's direction); else the solver's, on the chassis.
+constexpr double kMinArmYield_mprad = 0.1;
+// Share of an obstacle contact's depth the arm removes per step (Bullet's contact error reduction
+// for the chassis's contacts, btContactSolverInfo::m_erp).
+constexpr double kObstacleErrorReduction = 0.2;
 
 // d(centre)/d(angle) of a point at `d` from a revolute-y pivot, in (x, z).
 Vec2 RotationRate(const Vec3& d) { return Vec2(d.z(), -d.x()); }
@@ -183,7 +190,9 @@ Vec3 TrackRunningGear::IdlerCentre_B(int s) const {
 }
 
 void TrackRunningGear::Synchronize(const DriverInputs& inputs, const terrain::Terrain& terrain,
-                                   soil::SoilContact* soil, double dt,
+                                   soil::SoilContact* soil,
+                                   const terrain::ObstacleField* obstacles,
+                                   terrain::ContactScratch* scratch, double dt,
                                    std::vector<WheelState>* wheels) {
   // Powertrain: engine through the gearbox and an open differential to the two sprockets.
   for (int s = 0; s < 2; ++s) sprocket_speeds_[s] = SprocketSpeed(s);
@@ -205,7 +214,8 @@ void TrackRunningGear::Synchronize(const DriverInputs& inputs, const terrain::Te
   state_.last_base_omega_W = w;
   state_.has_last_base_velocity = true;
   gravity_W_ = world_->Gravity();
-  for (int s = 0; s < 2; ++s) SynchronizeSide(s, inputs, terrain, soil, dt, wheels);
+  wheel_obstacles_.clear();
+  for (int s = 0; s < 2; ++s) SynchronizeSide(s, inputs, terrain, soil, obstacles, scratch, dt, wheels);
 }
 
 void TrackRunningGear::AdvanceArm(int s, int k, double torque, double dt) {
@@ -223,6 +233,30 @@ void TrackRunningGear::AdvanceArm(int s, int k, double torque, double dt) {
   const double load = torque + axis_W.dot(c_W.cross(m * (gravity_W_ - a_pivot))) -
                       inertia * alpha_W_.dot(axis_W);
   double qd_new = qd + load / inertia * dt;
+  // Obstacle contacts: the wheel's contact point must not approach the obstacle faster than the
+  // error reduction allows, v_n = v_chassis(p).n + g qd >= beta depth / dt with g the point's
+  // normal speed per unit rate (one degree of freedom: the most demanding contact binds).
+  const int first = obstacle_begin_[s][k], end = obstacle_begin_[s][k + 1];
+  const double qd_free = qd_new;
+  int binding = -1;
+  double g_binding = 0.0;
+  if (first < end) {
+    const Vec3 v_com = world_->BaseLinearVelocity(body_);
+    for (int i = first; i < end; ++i) {
+      WheelObstacle& o = wheel_obstacles_[static_cast<size_t>(i)];
+      const terrain::BodyContact& c = o.contact;
+      const double g = axis_W.cross(c.point_W - pivot_W).dot(c.normal_W);
+      o.on_arm = g >= kMinArmYield_mprad;
+      if (!o.on_arm) continue;
+      const double v_chassis = (v_com + w_com.cross(c.point_W - com.position)).dot(c.normal_W);
+      const double qd_needed = (kObstacleErrorReduction * c.depth_m / dt - v_chassis) / g;
+      if (qd_needed > qd_new) {
+        qd_new = qd_needed;
+        binding = i;
+        g_binding = g;
+      }
+    }
+  }
   double q_new = q + qd_new * dt;
   // The hard travel limits beyond the stops: inelastic.
   const double lo = -tp_.rebound_angle_rad - kArmHardLimitBeyondStops_rad;
@@ -230,6 +264,21 @@ void TrackRunningGear::AdvanceArm(int s, int k, double torque, double dt) {
   if (q_new > hi || q_new < lo) {
     q_new = std::clamp(q_new, lo, hi);
     qd_new = 0.0;
+    // an arm at its hard limit cannot yield: its obstacle contacts are the solver's
+    if (first < end && q_new == hi) {
+      for (int i = first; i < end; ++i) wheel_obstacles_[static_cast<size_t>(i)].on_arm = false;
+      binding = -1;
+    }
+  }
+  obstacle_torque_nm_[s][k] = 0.0;
+  if (binding >= 0) {
+    // the obstacle's force on the member (along the binding contact's normal, at its point),
+    // which the chassis receives as it receives the ground force: the member passes it on, less
+    // what accelerates it (below)
+    const double impulse = inertia * (qd_new - qd_free);   // N m s about the pivot
+    const terrain::BodyContact& c = wheel_obstacles_[static_cast<size_t>(binding)].contact;
+    world_->ApplyBaseForce(body_, (impulse / (g_binding * dt)) * c.normal_W, c.point_W);
+    obstacle_torque_nm_[s][k] = impulse / dt;
   }
   state_.arm_q[s][k] = q_new;
   state_.arm_qd[s][k] = qd_new;
@@ -245,7 +294,9 @@ void TrackRunningGear::AdvanceArm(int s, int k, double torque, double dt) {
 
 void TrackRunningGear::SynchronizeSide(int s, const DriverInputs& inputs,
                                        const terrain::Terrain& terrain, soil::SoilContact* soil,
-                                       double dt, std::vector<WheelState>* wheels) {
+                                       const terrain::ObstacleField* obstacles,
+                                       terrain::ContactScratch* scratch, double dt,
+                                       std::vector<WheelState>* wheels) {
   const Side& side = sides_[s];
   const Pose com = world_->BasePose(body_);
   const Mat3 R = com.rotation.toRotationMatrix();
@@ -271,9 +322,20 @@ void TrackRunningGear::SynchronizeSide(int s, const DriverInputs& inputs,
     const Vec3 c_B = pivot_B + TurnAboutY(wheel_from_pivot_L_, state_.arm_q[s][k]);
     pivot_W[k] = ref_W + R * pivot_B;
     centre_W[k + 1] = ref_W + R * c_B;
-    pre_step_centre_W_[s][k] = centre_W[k + 1];
     loop.centre[k + 1] = Vec2(c_B.x(), c_B.z());
   }
+  // The road wheels' obstacle contacts at the step's start (the arms take them in AdvanceArm).
+  const double rw_radius = tp_.road_wheel_radius_m + tp_.shoe_height_m;
+  for (int k = 0; k < n_rw_; ++k) {
+    obstacle_begin_[s][k] = static_cast<int>(wheel_obstacles_.size());
+    if (obstacles == nullptr) continue;
+    obstacle_query_.clear();
+    terrain::WheelObstacleContacts(centre_W[k + 1], lat_W, rw_radius, 0.5 * tp_.shoe_width_m,
+                                   *obstacles, tp_.friction, kMaxObstacleContactsPerWheel, scratch,
+                                   &obstacle_query_);
+    for (const terrain::BodyContact& c : obstacle_query_) wheel_obstacles_.push_back({c, false});
+  }
+  obstacle_begin_[s][n_rw_] = static_cast<int>(wheel_obstacles_.size());
   const Vec3 idler_B = IdlerCentre_B(s);
   centre_W[idler] = ref_W + R * idler_B;
   loop.centre[idler] = Vec2(idler_B.x(), idler_B.z());
@@ -500,24 +562,14 @@ void TrackRunningGear::UpdateWheelStates(std::vector<WheelState>* wheels) const 
   }
 }
 
-void TrackRunningGear::AddObstacleContacts(const terrain::ObstacleField& obstacles,
-                                           terrain::ContactScratch* scratch,
-                                           std::vector<terrain::BodyContact>* contacts) {
-  const Pose com = world_->BasePose(body_);
-  const Vec3 axis = com.rotation * Vec3::UnitY();
-  const double r = tp_.road_wheel_radius_m + tp_.shoe_height_m;
-  for (int s = 0; s < 2; ++s) {
-    for (int k = 0; k < n_rw_; ++k) {
-      contacts->clear();
-      terrain::WheelObstacleContacts(pre_step_centre_W_[s][k], axis, r,
-                                     0.5 * tp_.shoe_width_m, obstacles, tp_.friction,
-                                     kMaxObstacleContactsPerWheel, scratch, contacts);
-      // on the chassis, which carries the arm: the arm does not yield to rocks and trees
-      for (const terrain::BodyContact& c : *contacts) {
-        world_->AddContact({body_, -1, c.point_W, c.normal_W, c.depth_m, c.friction,
-                            c.obstacle_tag});
-      }
+void TrackRunningGear::AddObstacleContacts() {
+  for (const WheelObstacle& o : wheel_obstacles_) {
+    const terrain::BodyContact& c = o.contact;
+    if (o.on_arm) {
+      if (c.obstacle_tag >= 0) world_->ReportObstacleTouch(body_, c.obstacle_tag);
+      continue;
     }
+    world_->AddContact({body_, -1, c.point_W, c.normal_W, c.depth_m, c.friction, c.obstacle_tag});
   }
 }
 

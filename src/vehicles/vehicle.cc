@@ -369,7 +369,8 @@ void Vehicle::SetInputs(const DriverInputs& inputs) {
 
 void Vehicle::Synchronize(double dt) {
   if (track_) {
-    track_->Synchronize(inputs_, terrain_, soil_, dt, &state_.wheels);
+    track_->Synchronize(inputs_, terrain_, soil_, obstacles_, &body_contact_->scratch, dt,
+                        &state_.wheels);
     AddBodyContacts();
     return;
   }
@@ -583,7 +584,7 @@ void Vehicle::AddBodyContacts() {
   }
   if (obstacles_ == nullptr) return;
   if (track_) {
-    track_->AddObstacleContacts(*obstacles_, &b.scratch, &b.contacts);
+    track_->AddObstacleContacts();
     return;
   }
   for (const Internals::Corner& corner : in_->corners) {

@@ -7,6 +7,7 @@
 // against Wong's track closed form.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -472,6 +473,98 @@ TEST(TrackM113, DrawbarPullVsSlipOnSand) {
                 r.sinkage_m);
     EXPECT_NEAR(r.drawbar_n, closed, 0.1 * closed + 1000.0);
   }
+}
+
+// Vertical lift of a road wheel's centre (chassis frame) at arm angle q from design (q = 0):
+// the trailing arm's centre from the pivot, turned by q about y.
+double ArmLift(const vehicles::TrackParams& t, double q) {
+  const Vec3& d = t.arm_pivot_offset_B;   // pivot from the wheel centre
+  return d.x() * std::sin(q) + d.z() * (1.0 - std::cos(q));
+}
+
+// Driven slowly onto a low block (a box rock, h = 0.15 m) with the left track and braked with
+// the front left road wheel on top of it, held 3 s. The road wheel meets the rock (the belt runs
+// through it: rocks touch road wheels and hull only), its arm yields and its torsion bar lifts
+// the hull by part of h. Closed form, the hull rigid on ten equal torsion-bar springs (vertical
+// rate k / lever^2 at each road-wheel station (x_j, y_j)): raising one spring's base by h moves
+// the hull at that station by h * H, H the station's leverage 1/N + x^2/Sum x^2 + y^2/Sum y^2
+// (coordinates about the stations' centroid: the least-squares fit of a plane to that one
+// displacement), so the arm lifts the wheel by (1 - H) h relative to the hull. The road wheel's
+// centre rises by h (it stands on the block). Before the arm yielded to rocks (branch armhit) it
+// did not deflect at all and the hull rose by the whole h at that station.
+TEST(TrackM113, RoadWheelArmYieldsToARock) {
+  const vehicles::VehicleParams p = M113();
+  const vehicles::TrackParams& t = p.tracks;
+  constexpr double kH = 0.15;
+  terrain::TaskSpec task = test::PlaneTask(64.0, 0.0, 0.0, 0.8);
+  const double rock_x = 3.2, rock_y = t.half_gauge_m;
+  task.rocks.push_back({rock_x, rock_y, kH / 3.8});   // box 4.4 s x 4.4 s x 3.8 s
+  test::VehicleSim sim(task, p, FlatPose(p, 0.0, 0.02));
+  vehicles::DriverInputs hold;
+  hold.braking = 1.0;
+  sim.Run(1.5, hold);
+  const vehicles::TrackRunningGear& gear = *sim.vehicle->track();
+  // the chassis point over the front left road wheel's design centre, and that wheel's record
+  const Vec3 station_B(gear.RoadWheelX(0, 0), t.half_gauge_m, t.road_wheel_z_m);
+  auto station_z = [&] {
+    const Pose& b = sim.state().pose_W;
+    return (b.position + b.rotation * station_B).z();
+  };
+  const double q0 = gear.ArmAngle(0, 0), z0 = station_z();
+  const double wheel_z0 = sim.state().wheels[0].center_W.z();
+  int n = 0;
+  while (sim.state().wheels[0].center_W.x() < rock_x - 0.02 && n++ < 20 * 200) {
+    vehicles::DriverInputs slow;   // creep: full thrust below 0.3 m/s
+    slow.throttle = std::clamp(4.0 * (0.4 - sim.state().velocity_W.norm()), 0.0, 1.0);
+    sim.Step(slow);
+  }
+  ASSERT_LT(n, 20 * 200) << "did not reach the rock: wheel at x " << sim.state().wheels[0].center_W.x()
+                         << " z " << sim.state().wheels[0].center_W.z() << " speed "
+                         << sim.state().velocity_W.norm();
+  double q_max = q0;
+  for (int k = 0; k < 3 * 200; ++k) {
+    sim.Step(hold);
+    q_max = std::max(q_max, gear.ArmAngle(0, 0));
+  }
+  const double q = gear.ArmAngle(0, 0);
+  const double lift = ArmLift(t, q) - ArmLift(t, q0);
+  const double hull_rise = station_z() - z0;
+  const double wheel_rise = sim.state().wheels[0].center_W.z() - wheel_z0;
+  // leverage of the front left station among the ten
+  double xs[10], ys[10], cx = 0.0;
+  for (int s = 0; s < 2; ++s) {
+    for (int k = 0; k < 5; ++k) {
+      xs[5 * s + k] = gear.RoadWheelX(s, k);
+      ys[5 * s + k] = (s == 0 ? 1.0 : -1.0) * t.half_gauge_m;
+      cx += xs[5 * s + k] / 10.0;
+    }
+  }
+  double sxx = 0.0, syy = 0.0, sxy = 0.0;
+  for (int j = 0; j < 10; ++j) {
+    sxx += (xs[j] - cx) * (xs[j] - cx);
+    syy += ys[j] * ys[j];
+    sxy += (xs[j] - cx) * ys[j];
+  }
+  // plane fit u = a + b (x - cx) + c y: the hat matrix's diagonal at station 0 (x, y not quite
+  // orthogonal: the right side's stations sit 0.085 m further back)
+  const double x0 = xs[0] - cx, y0 = ys[0];
+  const double det = sxx * syy - sxy * sxy;
+  const double leverage = 0.1 + (syy * x0 * x0 - 2.0 * sxy * x0 * y0 + sxx * y0 * y0) / det;
+  const double lift_expected = (1.0 - leverage) * kH;
+  std::printf("rock h %.3f m under the front left road wheel: arm %.4f -> %.4f rad (max %.4f; "
+              "asin(h / arm) = %.4f rad), wheel lift relative to the hull %.4f m (closed form "
+              "(1 - %.3f) h = %.4f m, %+.1f %%), hull rise at the station %.4f m, wheel centre "
+              "rise %.4f m (to %.4f m; block top + radius %.4f m)\n",
+              kH, q0, q, q_max, std::asin(kH / t.arm_pivot_offset_B.norm()), lift, leverage,
+              lift_expected, 100.0 * (lift / lift_expected - 1.0), hull_rise, wheel_rise,
+              sim.state().wheels[0].center_W.z(), kH + t.road_wheel_radius_m + t.shoe_height_m);
+  // it stands on the block (its centre one radius with the shoe above the top; at the start the
+  // belt stood ~6 mm deep in its elastic ground contact)
+  const double wheel_z = sim.state().wheels[0].center_W.z();
+  EXPECT_NEAR(wheel_z, kH + t.road_wheel_radius_m + t.shoe_height_m, 0.005);
+  EXPECT_NEAR(hull_rise + lift, wheel_rise, 0.01);   // the arm's geometry
+  EXPECT_LT(hull_rise, 0.6 * kH);                    // the suspension takes part of h
+  EXPECT_NEAR(lift, lift_expected, 0.25 * lift_expected);
 }
 
 }  // namespace

@@ -129,11 +129,16 @@ class PhysicsWorld {
 
   // A contact for the next Step only.
   void AddContact(const ContactConstraint& contact);
+  // A touch of an obstacle that vb resolved itself, outside the solver (a tracked vehicle's
+  // road-wheel arm yielding to a rock, track_running_gear.h): no constraint, only reported in the
+  // next Step's ObstacleContacts as an AddContact with that tag would be.
+  void ReportObstacleTouch(MultiBodyId body, int obstacle_tag);
 
   // Advances by dt seconds (exactly one internal step).
   void Step(double dt);
 
-  // Bodies touching obstacles during the last Step (sorted by body, then tag; no repeats).
+  // Bodies touching obstacles during the last Step: its contacts with a tag and the touches
+  // reported for it (sorted by body, then tag; no repeats).
   const std::vector<ObstacleContact>& ObstacleContacts() const;
 
   // Snapshot and restore of a body's dynamic state. A world whose bodies were all restored steps

@@ -13,6 +13,14 @@
 // chassis receives the ground force at its point minus what accelerates the arm relative to it
 // (momentum balance), so the pair moves as the two-body system does to first order in the
 // arm-to-chassis mass ratio (~1 %). The hard travel limits are inelastic clamps.
+// A road wheel against a rock or tree: the arm yields. Each of the wheel's obstacle contacts
+// (found at the step's start) is a non-penetration condition on the arm's rate, solved in the
+// arm's own integration against the chassis's velocity at the step's start (frictionless: the
+// wheel rolls); the force that took is applied to the chassis at the contact point like the
+// ground force, so the chassis feels the obstacle only through the pivot and the torsion bar
+// (the momentum balance above). Contacts the arm cannot take (a normal the arm's swing barely
+// moves the wheel along, or the arm at its hard limit) are the solver's, on the chassis at the
+// wheel, as before.
 // The track is an elastic belt around sprocket, road wheels and idler (track_belt.h): its tension
 // pulls the wheels and the idler (generalised forces), the tensioner balances it.
 // Ground contact: the belt's ground run is the polyline through the bottoms of the sprocket, the
@@ -81,19 +89,24 @@ class TrackRunningGear {
   // This step's forces: belt tension, torsion bars, tensioner, ground contact, sprocket drive
   // and brakes; advances the arms by dt. Fills the road wheels' contact fields of `wheels`
   // (axle-major: station 0 left, station 0 right, ...).
+  // `obstacles` may be null (no rocks or trees); `scratch` is the contact queries' scratch.
   void Synchronize(const DriverInputs& inputs, const terrain::Terrain& terrain,
-                   soil::SoilContact* soil, double dt, std::vector<WheelState>* wheels);
+                   soil::SoilContact* soil, const terrain::ObstacleField* obstacles,
+                   terrain::ContactScratch* scratch, double dt, std::vector<WheelState>* wheels);
   // Post-step read-out of the road wheels (spin, slip, travel, centre).
   void UpdateWheelStates(std::vector<WheelState>* wheels) const;
-  // Road wheels against rocks and trees (as the wheels of a wheeled vehicle).
-  void AddObstacleContacts(const terrain::ObstacleField& obstacles, terrain::ContactScratch* scratch,
-                           std::vector<terrain::BodyContact>* contacts);
+  // Road wheels against rocks and trees, after Synchronize: the contacts the arms could not
+  // take become the solver's (on the chassis at the wheel); the others are reported as touches.
+  void AddObstacleContacts();
 
   const State& state() const { return state_; }
   void set_state(const State& s) { state_ = s; }
   double SprocketSpeed(int side) const;   // rad/s, + forward
   double BeltTension(int side) const { return state_.tension_n[side]; }
   double ArmAngle(int side, int wheel) const { return state_.arm_q[side][wheel]; }
+  // Generalised force (N m about the pivot, + lifts) the obstacles put on an arm in the last
+  // Synchronize (0 when none touched it or the solver took its contacts).
+  double ArmObstacleTorque(int side, int wheel) const { return obstacle_torque_nm_[side][wheel]; }
   // The sprocket's link in the multibody (its joint velocity is the sprocket's spin).
   int SprocketLink(int side) const { return sides_[side].sprocket_link; }
   // Ground force along the belt on one track in the last Synchronize (N, + forward): the thrust.
@@ -115,14 +128,22 @@ class TrackRunningGear {
     Vec3 along_W;                       // the part carried along the belt (to the chassis)
   };
   void SynchronizeSide(int s, const DriverInputs& inputs, const terrain::Terrain& terrain,
-                       soil::SoilContact* soil, double dt, std::vector<WheelState>* wheels);
+                       soil::SoilContact* soil, const terrain::ObstacleField* obstacles,
+                       terrain::ContactScratch* scratch, double dt,
+                       std::vector<WheelState>* wheels);
   // Arm k's pivot and road-wheel centre in the chassis reference frame at angle q.
   Vec3 ArmPivot_B(int s, int k) const;
   Vec3 RoadWheelCentre_B(int s, int k, double q) const;
   Vec3 IdlerCentre_B(int s) const;
-  // Integrates arm k of side s over dt under the generalised force `torque` (all but its weight
-  // and inertia) and applies its inertial reaction to the chassis.
+  // Integrates arm k of side s over dt under the generalised force `torque` (all but its weight,
+  // inertia and obstacle contacts), the wheel's obstacle contacts as conditions on its rate, and
+  // applies its inertial reaction (and the obstacle force it took) to the chassis.
   void AdvanceArm(int s, int k, double torque, double dt);
+  // A road wheel's obstacle contact of this step; on_arm: the arm takes it (else the solver).
+  struct WheelObstacle {
+    terrain::BodyContact contact;
+    bool on_arm = false;
+  };
 
   const TrackParams& tp_;
   const VehicleParams& params_;
@@ -145,9 +166,14 @@ class TrackRunningGear {
   double thrust_n_[2] = {0.0, 0.0};
   // Per-step scratch.
   RunPoint run_[kMaxBeltWheels];
-  Vec3 pre_step_centre_W_[2][kMaxRoadWheels];   // road-wheel centres before this step's advance
   Vec3 accel_com_W_ = Vec3::Zero(), alpha_W_ = Vec3::Zero();   // the chassis's, lagged a step
   Vec3 gravity_W_ = Vec3::Zero();
+  // This step's road-wheel obstacle contacts; those of wheel k of side s are
+  // [obstacle_begin_[s][k], obstacle_begin_[s][k + 1]) (the right side's after the left's).
+  std::vector<WheelObstacle> wheel_obstacles_;
+  int obstacle_begin_[2][kMaxRoadWheels + 1] = {};
+  std::vector<terrain::BodyContact> obstacle_query_;
+  double obstacle_torque_nm_[2][kMaxRoadWheels] = {};
   std::vector<double> sprocket_speeds_, sprocket_torques_;
   std::vector<bool> driven_;
 };

@@ -92,6 +92,7 @@ struct PhysicsWorld::Impl {
   };
   std::vector<Body> bodies;
   std::vector<ContactConstraint> pending_contacts;   // for the next Step
+  std::vector<ObstacleContact> pending_touches;      // ReportObstacleTouch, for the next Step
   std::vector<btPersistentManifold*> manifolds;      // made for the current Step
   std::vector<ObstacleContact> contacts;
   double last_dt = 0.005;
@@ -483,6 +484,12 @@ void PhysicsWorld::AddContact(const ContactConstraint& contact) {
   impl_->pending_contacts.push_back(contact);
 }
 
+void PhysicsWorld::ReportObstacleTouch(MultiBodyId body, int obstacle_tag) {
+  VB_DEMAND(obstacle_tag >= 0);
+  impl_->Get(body);
+  impl_->pending_touches.push_back({body, obstacle_tag});
+}
+
 void PhysicsWorld::Step(double dt) {
   Impl& m = *impl_;
   // Motor impulse bounds were set for the previous dt; keep them consistent with this one.
@@ -522,6 +529,8 @@ void PhysicsWorld::Step(double dt) {
     if (c.obstacle_tag >= 0) m.contacts.push_back({c.body, c.obstacle_tag});
   }
   m.pending_contacts.clear();
+  for (const ObstacleContact& t : m.pending_touches) m.contacts.push_back(t);
+  m.pending_touches.clear();
 
   // Exactly one fixed step: maxSubSteps = 0 means "step by dt", no interpolation.
   m.world.stepSimulation(dt, 0, dt);
