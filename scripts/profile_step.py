@@ -2,13 +2,13 @@
 """Instructions per physics step, by stage, from callgrind: a step-cost measure that does not
 depend on what else the machine is doing (wall-clock timings on a shared machine do).
 
-Runs build/bench/vb_bench_episode under `valgrind --tool=callgrind` on the first PAIRS pairs of
+Runs build/bench/vb_bench_episode under `valgrind --tool=callgrind` on PAIRS pairs (from pair SKIP) of
 TASK (a trimmed copy of the task, its relative paths made absolute) and prints, per physics step,
 the inclusive instruction counts of the stages of Episode::Impl::PhysicsStep. Compare two builds
 by running it with --build of each (the instruction count of the same binary and input is
 repeatable; different builds may take different trajectories, hence "per step").
 
-usage: scripts/profile_step.py TASK [--pairs 2] [--build build] [--keep FILE] [--vehicle hmmwv]
+usage: scripts/profile_step.py TASK [--pairs 2] [--skip 0] [--build build] [--keep FILE] [--vehicle hmmwv]
        [--soil FILE]
 """
 import argparse
@@ -37,7 +37,7 @@ STAGES = [
 ]
 
 
-def trimmed_task(task, pairs, out_path):
+def trimmed_task(task, pairs, out_path, skip=0):
     text = open(task).read()
     base = os.path.dirname(os.path.abspath(task))
     # relative file references (height image, ...) become absolute
@@ -48,13 +48,16 @@ def trimmed_task(task, pairs, out_path):
     if not sep:
         sys.exit(f"{task}: no 'pairs:' block")
     items = re.split(r"\n(?=  - start:)", body)
-    open(out_path, "w").write(head + sep + "\n".join(items[:pairs]).rstrip("\n") + "\n")
+    if skip >= len(items):
+        sys.exit(f"{task}: --skip {skip} but only {len(items)} pairs")
+    open(out_path, "w").write(head + sep + "\n".join(items[skip:skip + pairs]).rstrip("\n") + "\n")
 
 
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("task")
     ap.add_argument("--pairs", type=int, default=2)
+    ap.add_argument("--skip", type=int, default=0, help="start at this pair (0-based)")
     ap.add_argument("--build", default="build")
     ap.add_argument("--keep", help="keep the callgrind output in this file")
     ap.add_argument("--vehicle", default="hmmwv", help="data/vehicles/NAME.yaml")
@@ -66,7 +69,7 @@ def main():
         sys.exit(f"{bench} not found: build first")
     with tempfile.TemporaryDirectory() as tmp:
         task = os.path.join(tmp, os.path.basename(a.task))
-        trimmed_task(a.task, a.pairs, task)
+        trimmed_task(a.task, a.pairs, task, a.skip)
         out = a.keep or os.path.join(tmp, "callgrind.out")
         run = subprocess.run(["valgrind", "--tool=callgrind", "--callgrind-out-file=" + out,
                               bench, task, "1", a.vehicle]
@@ -90,7 +93,7 @@ def main():
             if re.search(pattern, fn):
                 counts[label] = counts.get(label, 0) + n
     outcome = re.search(r"run 1: (.*?), \d", run.stdout)
-    print(f"{a.task} (first {a.pairs} pairs, {steps} steps, "
+    print(f"{a.task} (pairs {a.skip}-{a.skip + a.pairs - 1}, {steps} steps, "
           f"{outcome.group(1) if outcome else '?'}), {bench}")
     total = counts.get(STAGES[0][0], 0)
     for label, _ in STAGES:

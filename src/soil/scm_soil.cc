@@ -1079,6 +1079,17 @@ void ScmSoil::Impl::Erode(const BulldozingParams& bp) {
     if (n != nullptr) enqueue(&active, queue_stamp, n, w.i, w.j, w.ring);
   }
   pending.clear();
+  // A local for the maximum raise: the node writes below (doubles and int32 stamps) could change
+  // the member as far as the compiler knows, which would reload and store it at every raise.
+  double max_raise = max_raise_m;   // written back after the passes (max is exact in any order)
+  // Raise(nd, dh) for dh > 0 with the local maximum (a lowering is one add: see Raise).
+  auto raise_up = [this, &max_raise](Node* nd, double dh) {
+    nd->level0_m += dh;
+    max_raise = std::max(max_raise, nd->level0_m - nd->base_m);
+    Tile& t = *tiles[static_cast<size_t>(nd->tile)];
+    double& top = t.row_top_m[(nd - t.nodes) >> kTileBits];
+    top = std::max(top, nd->level0_m);
+  };
   for (int pass = 0; pass < bp.erosion_iterations && !active.empty(); ++pass) {
     const int32_t stamp = ++queue_stamp;
     next.clear();
@@ -1091,32 +1102,39 @@ void ScmSoil::Impl::Erode(const BulldozingParams& bp) {
       // allocated only then: most neighbours are within the threshold). The four neighbours lie
       // in four different tiles when outside n's, so allocating one leaves the others' nullptr
       // true.
+      const int wi = w.i, wj = w.j;
       Node* nbs[4];
-      Neighbours(n, w.i, w.j, false, nbs);
+      Neighbours(n, wi, wj, false, nbs);
 #pragma GCC unroll 4
       for (int e = 0; e < 4; ++e) {
         Node* nb = nbs[e];
         const double level_nb = nb != nullptr
                                     ? Level(*nb)
-                                    : terrain.Height((w.i + kDi[e]) * dx, (w.j + kDj[e]) * dx);
+                                    : terrain.Height((wi + kDi[e]) * dx, (wj + kDj[e]) * dx);
         const double dy = level_n - level_nb;
         if (std::abs(dy) <= threshold) continue;
-        const int ni = w.i + kDi[e], nj = w.j + kDj[e];
+        const int ni = wi + kDi[e], nj = wj + kDj[e];
         if (nb == nullptr) nb = At(ni, nj, true);
         if (nb == nullptr || nb->slot < 0 || nb->contact_step == cur_step) continue;
         const double q = 0.5 * (std::abs(dy) - threshold) / 4.0;
-        const double moved = dy > 0.0 ? q : -q;  // from the higher node to the lower one
-        Raise(n, -moved);
-        Raise(nb, moved);
+        // from the higher node to the lower one: Raise(n, -moved), Raise(nb, moved)
+        if (dy > 0.0) {
+          n->level0_m += -q;
+          raise_up(nb, q);
+        } else {
+          raise_up(n, q);
+          nb->level0_m += -q;
+        }
         level_n = Level(*n);
         if (q > kErosionSettled_m) {
-          enqueue(&next, stamp, n, w.i, w.j, w.ring);
+          enqueue(&next, stamp, n, wi, wj, w.ring);
           if (w.ring < propagations) enqueue(&next, stamp, nb, ni, nj, w.ring + 1);
         }
       }
     }
     active.swap(next);
   }
+  max_raise_m = max_raise;
   pending.swap(active);  // still moving: continue next step
 }
 

@@ -17,16 +17,13 @@
 #include <cstdio>
 #include <string>
 
-#include "io/soil_io.h"
 #include "io/vehicle_io.h"
-#include "support/vehicle_sim.h"
-#include "vb/soil/scm_soil.h"
+#include "support/soil_sim.h"
 
 namespace vb::soil {
 namespace {
 
 using terrain::SurfaceClass;
-constexpr double kDt = 0.005;   // the ARTcar runs at the runner's step (no max_step_s)
 
 struct FlatResult {
   double static_sinkage_m = 0.0, driving_sinkage_m = 0.0, speed_mps = 0.0;
@@ -37,40 +34,18 @@ struct FlatResult {
 // mean of the four wheels.
 FlatResult DriveFlat(const vehicles::VehicleParams& p, SurfaceClass surface, double grid_m,
                      double target_mps) {
-  const terrain::TaskSpec task = test::PlaneTask(32.0, 0.0, 0.0, 0.8, surface);
-  const terrain::Terrain ground(task);
-  SoilConfig config = io::LoadSoil(VB_SOURCE_DIR "/data/soils/verti_bench.yaml");
-  config.grid_spacing_m = grid_m;
-  ScmSoil soil(ground, config);
-  engine::PhysicsWorld world;
-  Pose pose;
-  pose.position = Vec3(-10.0, 0.0, p.wheel.radius_m - p.axles[0].z_m + 0.01);
-  vehicles::Vehicle v(p, ground, pose, &world);
-  v.SetSoil(&soil);
-  auto step = [&](const vehicles::DriverInputs& in) {
-    v.SetInputs(in);
-    v.Synchronize(kDt);
-    soil.EndStep(kDt);
-    world.Step(kDt);
-    v.UpdateState();
-  };
-  auto sinkage = [&] {
-    double s = 0.0;
-    for (const vehicles::WheelState& w : v.state().wheels) {
-      s += (p.wheel.radius_m - w.center_W.z()) / 4.0;
-    }
-    return s;
-  };
+  test::SoilSim d(test::PlaneTask(32.0, 0.0, 0.0, 0.8, surface), p, test::FlatStart(p, -10.0, 0.01),
+                  test::BenchSoil(grid_m));
   FlatResult r;
   const vehicles::DriverInputs idle;
-  for (int k = 0; k < 400; ++k) step(idle);
-  r.static_sinkage_m = sinkage();
+  for (int k = 0; k < 400; ++k) d.Step(idle);
+  r.static_sinkage_m = d.MeanSinkage();
   int n = 0;
   for (int k = 0; k < 1600; ++k) {
-    step(test::SpeedControl(target_mps, v.state().forward_speed_mps));
+    d.Step(test::SpeedControl(target_mps, d.state().forward_speed_mps));
     if (k >= 800) {
-      r.driving_sinkage_m += sinkage();
-      r.speed_mps += v.state().forward_speed_mps;
+      r.driving_sinkage_m += d.MeanSinkage();
+      r.speed_mps += d.state().forward_speed_mps;
       ++n;
     }
   }
@@ -81,7 +56,7 @@ FlatResult DriveFlat(const vehicles::VehicleParams& p, SurfaceClass surface, dou
 
 TEST(ArtSoilGrid, ItsGridAgreesWithAFineGridOnFlatSoil) {
   const vehicles::VehicleParams art = io::LoadVehicle(VB_SOURCE_DIR "/data/vehicles/art.yaml");
-  const SoilConfig file = io::LoadSoil(VB_SOURCE_DIR "/data/soils/verti_bench.yaml");
+  const SoilConfig file = test::BenchSoil();
   // As Episode::Reset builds it.
   const double grid_m = art.max_soil_grid_m > 0.0
                             ? std::min(file.grid_spacing_m, art.max_soil_grid_m)

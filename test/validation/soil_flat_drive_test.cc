@@ -14,12 +14,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <memory>
 #include <string>
 
-#include "io/soil_io.h"
-#include "support/vehicle_sim.h"
-#include "vb/soil/scm_soil.h"
+#include "support/soil_sim.h"
 
 namespace vb::soil {
 namespace {
@@ -37,42 +34,12 @@ constexpr Reference kReferences[] = {{SurfaceClass::kSnow, "snow", 0.261, 0.108,
                                      {SurfaceClass::kMud, "mud", 0.113, 0.043, 3.85},
                                      {SurfaceClass::kSand, "sand", 0.045, 0.006, 3.96}};
 
-struct FlatDrive {
-  terrain::TaskSpec task;
-  std::unique_ptr<terrain::Terrain> ground;
-  engine::PhysicsWorld world;
-  std::unique_ptr<ScmSoil> soil;
-  std::unique_ptr<vehicles::Vehicle> vehicle;
-  vehicles::VehicleParams params = test::Hmmwv();
-
-  FlatDrive(SurfaceClass surface, double grid_m) {
-    task = test::PlaneTask(128.0, 0.0, 0.0, 0.8, surface);
-    ground = std::make_unique<terrain::Terrain>(task);
-    SoilConfig config =
-        io::LoadSoil(std::string(VB_SOURCE_DIR) + "/data/soils/verti_bench.yaml");
-    config.grid_spacing_m = grid_m;
-    soil = std::make_unique<ScmSoil>(*ground, config);
-    Pose pose;
-    pose.position = Vec3(-20.0, 0.0, params.wheel.radius_m + 0.01);
-    vehicle = std::make_unique<vehicles::Vehicle>(params, *ground, pose, &world);
-    vehicle->SetSoil(soil.get());
-  }
-  void Step(const vehicles::DriverInputs& in) {
-    vehicle->SetInputs(in);
-    vehicle->Synchronize(kDt);
-    soil->EndStep(kDt);
-    world.Step(kDt);
-    vehicle->UpdateState();
-  }
-  // Mean over the four wheels of radius - spindle height above the undeformed surface (z = 0).
-  double MeanSinkage() const {
-    double s = 0.0;
-    for (const vehicles::WheelState& w : vehicle->state().wheels) {
-      s += (params.wheel.radius_m - w.center_W.z()) / 4.0;
-    }
-    return s;
-  }
-};
+// The HMMWV at x = -20 m on a 128 m plane of `surface`, the soil at `grid_m`, wheels 1 cm up.
+test::SoilSim FlatDrive(SurfaceClass surface, double grid_m) {
+  const vehicles::VehicleParams hmmwv = test::Hmmwv();
+  return test::SoilSim(test::PlaneTask(128.0, 0.0, 0.0, 0.8, surface), hmmwv,
+                       test::FlatStart(hmmwv, -20.0, 0.01), test::BenchSoil(grid_m));
+}
 
 struct DriveResult {
   double static_sinkage_m, driving_sinkage_m, speed_mps;
@@ -82,7 +49,7 @@ struct DriveResult {
 // Settle 2 s, then P speed control (target 4 m/s) for 10 s; speed and sinkage averaged over the
 // last 5 s.
 DriveResult DriveFlat(SurfaceClass surface, double grid_m) {
-  FlatDrive d(surface, grid_m);
+  test::SoilSim d = FlatDrive(surface, grid_m);
   vehicles::DriverInputs idle;
   for (int k = 0; k < 400; ++k) d.Step(idle);
   DriveResult r{d.MeanSinkage(), 0.0, 0.0};
@@ -139,7 +106,7 @@ INSTANTIATE_TEST_SUITE_P(Grids, SoilFlatDrive, ::testing::Values(0.05, 0.1),
 // turn may widen but not reverse.
 TEST(SoilFlatDriveSteering, FullLockAtHighSlipOnSnowStillTurnsLeft) {
   for (double grid_m : {0.05, 0.1}) {
-    FlatDrive d(SurfaceClass::kSnow, grid_m);
+    test::SoilSim d = FlatDrive(SurfaceClass::kSnow, grid_m);
     vehicles::DriverInputs in;
     for (int k = 0; k < 400; ++k) d.Step(in);
     in.throttle = 1.0;

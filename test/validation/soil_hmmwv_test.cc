@@ -5,23 +5,16 @@
 
 #include <algorithm>
 #include <cmath>
-#include <memory>
 #include <string>
 
-#include "io/soil_io.h"
-#include "support/worlds.h"
-#include "vb/engine/physics_world.h"
+#include "support/soil_sim.h"
 #include "vb/soil/bekker.h"
-#include "vb/soil/scm_soil.h"
-#include "vb/terrain/terrain.h"
 #include "vb/terrain/terrain_physics.h"
-#include "vb/vehicles/vehicle.h"
 
 namespace vb::soil {
 namespace {
 
 using terrain::SurfaceClass;
-constexpr double kDt = 0.005;
 
 const char* Name(SurfaceClass c) {
   switch (c) {
@@ -32,51 +25,32 @@ const char* Name(SurfaceClass c) {
   }
 }
 
-// One HMMWV on a plane z = tan(slope) x of one surface, facing +x (uphill), wheels just touching.
-struct Drive {
-  terrain::TaskSpec task;
-  std::unique_ptr<terrain::Terrain> ground;
-  engine::PhysicsWorld world;
-  std::unique_ptr<ScmSoil> soil;
-  std::unique_ptr<vehicles::Vehicle> vehicle;
+// One HMMWV on a plane z = tan(slope) x of one surface, facing +x (uphill), wheels just touching;
+// the soil solver only on a deformable surface.
+test::SoilSim Drive(SurfaceClass surface, double slope_rad, double x0) {
+  const vehicles::VehicleParams params = test::Hmmwv();
+  Pose pose;
+  pose.rotation = Quat(Eigen::AngleAxisd(-slope_rad, Vec3::UnitY()));
+  pose.position = Vec3(x0, 0.0, std::tan(slope_rad) * x0 + params.wheel.radius_m / std::cos(slope_rad) + 0.01);
+  return test::SoilSim(test::PlaneTask(128.0, std::tan(slope_rad), 0.0, 0.8, surface), params, pose,
+                       test::BenchSoil(), terrain::IsDeformable(surface));
+}
 
-  Drive(SurfaceClass surface, double slope_rad, double x0) {
-    task = test::PlaneTask(128.0, std::tan(slope_rad), 0.0, 0.8, surface);
-    ground = std::make_unique<terrain::Terrain>(task);
-    const vehicles::VehicleParams params = test::Hmmwv();
-    Pose pose;
-    pose.rotation = Quat(Eigen::AngleAxisd(-slope_rad, Vec3::UnitY()));
-    pose.position = Vec3(x0, 0.0, std::tan(slope_rad) * x0 + params.wheel.radius_m / std::cos(slope_rad) + 0.01);
-    vehicle = std::make_unique<vehicles::Vehicle>(params, *ground, pose, &world);
-    if (terrain::IsDeformable(surface)) {
-      soil = std::make_unique<ScmSoil>(*ground, io::LoadSoil(std::string(VB_SOURCE_DIR) + "/data/soils/verti_bench.yaml"));
-      vehicle->SetSoil(soil.get());
-    }
-  }
-  // One step; `lift_n` pushes the chassis up (to lower it onto the soil gently).
-  void Step(double throttle, double braking, double lift_n = 0.0) {
-    vehicles::DriverInputs in;
-    in.throttle = throttle;
-    in.braking = braking;
-    vehicle->SetInputs(in);
-    vehicle->Synchronize(kDt);
-    if (soil) soil->EndStep(kDt);
-    if (lift_n > 0.0) {
-      const Pose com = world.BasePose(vehicle->body());
-      world.ApplyBaseForce(vehicle->body(), Vec3(0, 0, lift_n), com.position);
-    }
-    world.Step(kDt);
-    vehicle->UpdateState();
-  }
-};
+// Driver inputs of throttle and braking alone.
+vehicles::DriverInputs Pedals(double throttle, double braking) {
+  vehicles::DriverInputs in;
+  in.throttle = throttle;
+  in.braking = braking;
+  return in;
+}
 
 // Does the HMMWV, starting from rest with full throttle, climb 8 m up the slope within 12 s?
 bool Climbs(SurfaceClass surface, double slope_deg) {
   const double slope = slope_deg * kPi / 180.0;
-  Drive d(surface, slope, -20.0);
+  test::SoilSim d = Drive(surface, slope, -20.0);
   const double x0 = d.vehicle->state().pose_W.position.x();
   for (int k = 0; k < 2400; ++k) {
-    d.Step(1.0, 0.0);
+    d.Step(Pedals(1.0, 0.0));
     if (d.vehicle->state().pose_W.position.x() - x0 > 8.0 * std::cos(slope)) return true;
   }
   return false;
@@ -96,13 +70,15 @@ double Gradeability(SurfaceClass surface) {
 // Static: the vehicle is lowered onto flat soil over 2 s (a lift force fading out), then rests
 // braked; each wheel's sinkage against Bekker's static sinkage for its measured load.
 TEST(SoilHmmwvValidation, StaticSinkageAgreesWithBekkerForEachWheelLoad) {
-  const SoilConfig config = io::LoadSoil(std::string(VB_SOURCE_DIR) + "/data/soils/verti_bench.yaml");
+  const SoilConfig config = test::BenchSoil();
   const vehicles::VehicleParams hmmwv = test::Hmmwv();
   double previous = 1e9;
   for (SurfaceClass c : {SurfaceClass::kSnow, SurfaceClass::kMud, SurfaceClass::kSand}) {
-    Drive d(c, 0.0, 0.0);
+    test::SoilSim d = Drive(c, 0.0, 0.0);
     const double weight = hmmwv.chassis.mass_kg * kGravity;
-    for (int k = 0; k < 600; ++k) d.Step(0.0, 1.0, weight * std::max(0.0, 1.0 - k / 400.0));
+    for (int k = 0; k < 600; ++k) {
+      d.Step(Pedals(0.0, 1.0), Vec3(0.0, 0.0, weight * std::max(0.0, 1.0 - k / 400.0)));  // lowered
+    }
     double mean_sinkage = 0.0;
     for (const vehicles::WheelState& w : d.vehicle->state().wheels) {
       const double bekker = WheelSinkageExact(*config.For(c), hmmwv.wheel.radius_m, hmmwv.wheel.width_m, w.normal_force_n);
@@ -121,9 +97,9 @@ TEST(SoilHmmwvValidation, StaticSinkageAgreesWithBekkerForEachWheelLoad) {
 TEST(SoilHmmwvValidation, PassLeavesRutsWithBerms) {
   double previous = 1e9;
   for (SurfaceClass c : {SurfaceClass::kSnow, SurfaceClass::kMud, SurfaceClass::kSand}) {
-    Drive d(c, 0.0, -10.0);
+    test::SoilSim d = Drive(c, 0.0, -10.0);
     for (int k = 0; k < 2400 && d.vehicle->state().pose_W.position.x() < 10.0; ++k) {
-      d.Step(std::clamp(3.0 - d.vehicle->state().forward_speed_mps, 0.0, 1.0), 0.0);
+      d.Step(Pedals(std::clamp(3.0 - d.vehicle->state().forward_speed_mps, 0.0, 1.0), 0.0));
     }
     ASSERT_GT(d.vehicle->state().pose_W.position.x(), 5.0) << Name(c) << " did not get through";
     // Across the left track at x = -2 (passed by both axles): deepest point and highest berm.
