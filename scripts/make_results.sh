@@ -4,7 +4,8 @@
 # (tasks/envNNN.yaml, docs/install.md "Provenance"), not by this machine's paths.
 #
 #   scripts/make_results.sh NAME [JOBS]     NAME: pid_hmmwv | classical_hmmwv | robustness_pid |
-#                                                 oracle_hmmwv | pid_m113
+#                                                 oracle_hmmwv | pid_m113 |
+#                                                 pid_hmmwv_verti_bench
 #
 # VB_KEEP_RUN=DIR keeps the batch's trial files (trajectories) in DIR for analysis.
 # Refuses (exit 2) when tracked files differ from HEAD, or when build/ was not built from HEAD
@@ -14,14 +15,16 @@
 # top-down pictures and index into docs/results/NAME. Long: pid_hmmwv is 1000 trials (~3 min on
 # 2 free cores), classical_hmmwv 1400 (over an hour), robustness_pid 800 (~15 min), oracle_hmmwv
 # 200 (PID and the oracle on pair 0 of the 100 environments; see docs/baselines.md "Oracle"),
-# pid_m113 1000 (the tracked M113 with PID, docs/results/pid_m113/README.md).
+# pid_m113 1000 (the tracked M113 with PID, docs/results/pid_m113/README.md),
+# pid_hmmwv_verti_bench 1000 (pid_hmmwv decided by the original's success and stuck rules,
+# --rules verti_bench; docs/validation.md "The original's rules").
 set -euo pipefail
 cd "$(dirname "$0")/.."
 name=${1:-}
 jobs=${2:-2}
 case "$name" in
-  pid_hmmwv|classical_hmmwv|robustness_pid|oracle_hmmwv|pid_m113) ;;
-  *) echo "usage: scripts/make_results.sh pid_hmmwv|classical_hmmwv|robustness_pid|oracle_hmmwv|pid_m113 [JOBS]" >&2
+  pid_hmmwv|classical_hmmwv|robustness_pid|oracle_hmmwv|pid_m113|pid_hmmwv_verti_bench) ;;
+  *) echo "usage: scripts/make_results.sh pid_hmmwv|classical_hmmwv|robustness_pid|oracle_hmmwv|pid_m113|pid_hmmwv_verti_bench [JOBS]" >&2
      exit 2 ;;
 esac
 if [ -n "$(git status --porcelain --untracked-files=no)" ]; then
@@ -53,6 +56,9 @@ case "$name" in
   robustness_pid)
     batch --pairs 0,5 --perception none,mild,moderate,severe --traj-every 20 --out "$tmp/run"
     topdown="" ;;
+  pid_hmmwv_verti_bench)
+    batch --traj-every 10 --rules verti_bench --out "$tmp/run"
+    topdown=env061_p0_s0_hmmwv_pid,env042_p1_s0_hmmwv_pid,env095_p2_s0_hmmwv_pid ;;
   pid_m113)
     batch --vehicles m113 --traj-every 10 --out "$tmp/run"
     topdown=env061_p0_s0_m113_pid,env066_p0_s0_m113_pid,env095_p2_s0_m113_pid ;;

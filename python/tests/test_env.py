@@ -158,6 +158,27 @@ def test_reaching_the_goal_terminates_with_the_success_bonus():
         assert ret > 3000.0
 
 
+def test_the_original_rules_reach_the_episode():
+    """rules="verti_bench": success only within 8 m (3-D) of the marker 2 m above the goal, i.e.
+    ~7.85 m planar on level ground, where vb's rules stop at 10 m."""
+    ends = {}
+    for rules in ("vb", "verti_bench"):
+        with VbEnv(tasks=RIGID_TASK, rules=rules, **SMALL) as env:
+            obs, info = env.reset(seed=0, options={"pair": 0})
+            heading = STATE_NAMES.index("heading_error_rad")
+            for _ in range(700):
+                steer = float(np.clip(obs["state"][heading], -1, 1))
+                obs, _, terminated, truncated, info = env.step(np.array([steer, 1.0], np.float32))
+                if terminated or truncated:
+                    break
+            assert info["outcome"]["status"] == "success", info
+            ends[rules] = info["outcome"]["final_goal_distance_m"]
+    assert 9.9 < ends["vb"] <= 10.0
+    assert ends["verti_bench"] < 8.0
+    with pytest.raises(ConfigError, match="rules"):
+        VbEnv(tasks=RIGID_TASK, rules="paper")
+
+
 def test_bad_configuration_gives_clear_errors():
     with pytest.raises(ConfigError, match="unknown option.*colour"):
         VbEnv(tasks=RIGID_TASK, colour="red")

@@ -19,6 +19,7 @@ from .reward import RewardWeights
 REPO_ROOT = Path(__file__).resolve().parents[2]
 LAYERS = ("elevation", "semantics", "occupancy", "friction")
 ACTIONS = ("speed", "direct")
+RULE_SETS = ("vb", "verti_bench")   # runner::RuleSet (include/vb/engine/runner/outcome_rules.h)
 PHYSICS_STEP_S = 0.005
 
 
@@ -63,6 +64,8 @@ class EnvConfig:
                                         # data/perception (mild, moderate, severe) or a .yaml
     control_period_s: float = 0.1       # 0.005 reproduces the original's 200 Hz policy
     time_limit_s: float = 60.0
+    rules: str = "vb"                   # success and stuck rules: "vb" (the benchmark's) or
+                                        # "verti_bench" (the original runners', docs/task_format.md)
     pairs: Sequence[int] | None = None  # pair indices to draw from (default: all of each task)
     action: str = "speed"               # "speed": steering + target speed; "direct": throttle,
                                         # steering, brake
@@ -107,6 +110,8 @@ class EnvConfig:
             )
         if not (0 < self.time_limit_s <= 3600):  # runner::kMaxTimeLimit_s
             raise ConfigError(f"time_limit_s: {self.time_limit_s!r} not in (0, 3600]")
+        if self.rules not in RULE_SETS:
+            raise ConfigError(f"rules: {self.rules!r} unknown; valid: {', '.join(RULE_SETS)}")
         if not (self.max_speed_mps > 0):
             raise ConfigError(f"max_speed_mps: {self.max_speed_mps!r} must be > 0")
         if isinstance(self.crops, Crop):
@@ -152,6 +157,7 @@ class EnvConfig:
             "perception": str(self.perception),
             "control_period_s": float(self.control_period_s),
             "time_limit_s": float(self.time_limit_s),
+            "rules": str(self.rules),
             "lookahead_m": float(self.lookahead_m),
             "replan_period_s": float(self.replan_period_s),
             "crops": [

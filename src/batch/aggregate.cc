@@ -81,6 +81,7 @@ std::string StatsCsv(const GroupStats& s) {
 std::string SystemLabel(const TrialRow& row) {
   std::string label = row.system + "/" + row.vehicle;
   if (!row.perception.empty() && row.perception != "none") label += "/perception:" + row.perception;
+  if (row.rules != "vb") label += "/rules:" + row.rules;
   return label;
 }
 
@@ -173,7 +174,8 @@ Report BuildReport(const std::vector<TrialRow>& rows) {
       const std::string p = r.perception.empty() ? "none" : r.perception;
       present.insert(p);
       if (std::find(presets.begin(), presets.end(), p) == presets.end()) extra.insert(p);
-      const std::string system = r.system + "/" + r.vehicle;
+      const std::string system =
+          r.system + "/" + r.vehicle + (r.rules != "vb" ? "/rules:" + r.rules : std::string());
       systems.insert(system);
       groups[{system, p}].push_back(&r);
     }

@@ -12,6 +12,7 @@
 
 #include "vb/engine/error.h"
 #include "vb/engine/file_name.h"
+#include "vb/engine/runner/outcome_rules.h"
 #include "vb/engine/text_format.h"
 
 namespace vb::batch {
@@ -22,8 +23,14 @@ const char* const kColumns[] = {
     "system",       "perception", "scale",      "elevation",     "terrain",    "density",
     "status",       "traversal_time_s", "sim_time_s", "final_goal_distance_m",
     "mean_abs_roll_deg", "mean_abs_pitch_deg", "task_fnv1a64", "vb_version", "git_commit",
-    "host",         "wall_time_s", "task_file",    "message"};
+    "host",         "wall_time_s", "task_file",    "message",  "rules"};
 constexpr size_t kNumColumns = sizeof(kColumns) / sizeof(kColumns[0]);
+// "rules" is written only when a row was decided by other rules than vb's, so indexes of
+// default runs keep their format; "perception" and "rules" may be missing when read.
+constexpr size_t kRulesColumn = kNumColumns - 1;
+bool OptionalColumn(size_t i) {
+  return std::string(kColumns[i]) == "perception" || i == kRulesColumn;
+}
 // Longest task, vehicle or system name in a row (terrain::TaskLimits::kMaxNameLength).
 constexpr size_t kMaxNameLength = 128;
 
@@ -131,8 +138,13 @@ std::string PerceptionStemSuffix(const std::string& perception) {
 }
 
 std::string IndexCsv(const std::vector<TrialRow>& rows) {
+  const bool with_rules = std::any_of(rows.begin(), rows.end(),
+                                      [](const TrialRow& r) { return r.rules != "vb"; });
   std::string text;
-  for (size_t i = 0; i < kNumColumns; ++i) text += std::string(i ? "," : "") + kColumns[i];
+  for (size_t i = 0; i < kNumColumns; ++i) {
+    if (i == kRulesColumn && !with_rules) continue;
+    text += std::string(i ? "," : "") + kColumns[i];
+  }
   text += "\n";
   for (const TrialRow& r : rows) {
     text += std::to_string(r.matrix_index) + "," + Field(r.task) + "," + std::to_string(r.pair) +
@@ -143,7 +155,7 @@ std::string IndexCsv(const std::vector<TrialRow>& rows) {
             Num(r.mean_abs_roll_deg) + "," + Num(r.mean_abs_pitch_deg) + "," +
             Field(r.task_fnv1a64) + "," + Field(r.vb_version) + "," + Field(r.git_commit) + "," +
             Field(r.host) + "," + Num(r.wall_time_s) + "," + Field(r.task_file) + "," +
-            Field(r.message) + "\n";
+            Field(r.message) + (with_rules ? "," + Field(r.rules) : std::string()) + "\n";
   }
   return text;
 }
@@ -153,7 +165,7 @@ std::vector<TrialRow> ParseIndexCsv(const std::string& text, const std::string& 
   if (records.empty()) throw InputError(source, 1, "", "empty index (no header)");
   const Record& header = records.front();
   // Columns by name, in the order of kColumns; "perception" may be missing (indexes written
-  // before perception models existed: ground truth).
+  // before perception models existed: ground truth), "rules" too (vb's rules).
   size_t col[kNumColumns];
   for (size_t i = 0; i < kNumColumns; ++i) col[i] = SIZE_MAX;
   for (size_t j = 0; j < header.fields.size(); ++j) {
@@ -166,7 +178,7 @@ std::vector<TrialRow> ParseIndexCsv(const std::string& text, const std::string& 
     col[i] = j;
   }
   for (size_t i = 0; i < kNumColumns; ++i) {
-    if (col[i] == SIZE_MAX && std::string(kColumns[i]) != "perception") {
+    if (col[i] == SIZE_MAX && !OptionalColumn(i)) {
       throw InputError(source, 1, kColumns[i], "missing column");
     }
   }
@@ -181,10 +193,11 @@ std::vector<TrialRow> ParseIndexCsv(const std::string& text, const std::string& 
                                                  " fields, expected " + std::to_string(width));
     }
     const int ln = rec.line;
-    // Field of column kColumns[c] ("" for a missing optional column).
-    std::string none = "none";
+    // Field of column kColumns[c] (the default of a missing optional column).
+    static const std::string kNone = "none", kVbRules = "vb";
     auto f = [&](size_t c) -> const std::string& {
-      return col[c] == SIZE_MAX ? none : rec.fields[col[c]];
+      if (col[c] == SIZE_MAX) return c == kRulesColumn ? kVbRules : kNone;
+      return rec.fields[col[c]];
     };
     TrialRow r;
     r.matrix_index = ParseU64(f(0), source, ln, "matrix_index");
@@ -214,6 +227,11 @@ std::vector<TrialRow> ParseIndexCsv(const std::string& text, const std::string& 
     r.wall_time_s = ParseDouble(f(21), source, ln, "wall_time_s");
     r.task_file = f(22);
     r.message = f(23);
+    r.rules = f(kRulesColumn);
+    if (!runner::RuleSetFromName(r.rules)) {
+      throw InputError(source, ln, "rules",
+                       "unknown rule set '" + r.rules + "'; valid: " + runner::RuleSetNames());
+    }
     // The names become file names (trials/<stem>.json, report/topdown/<stem>.png): an edited
     // index must not send vb_report or a merge outside its directories.
     const std::pair<const char*, const std::string*> names[] = {

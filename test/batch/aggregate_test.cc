@@ -9,6 +9,9 @@
 
 #include <gtest/gtest.h>
 
+#include "vb/batch/index.h"
+#include "vb/engine/error.h"
+
 namespace vb::batch {
 namespace {
 
@@ -181,6 +184,44 @@ TEST(IndexPerceptionTest, IndexesWithoutThePerceptionColumnReadAsGroundTruth) {
   EXPECT_EQ(old[0].perception, "none");
   EXPECT_EQ(RowStem(old[0]), "env000_p0_s0_hmmwv_pid");
   EXPECT_EQ(RowStem(back[0]), "env000_p0_s0_hmmwv_pid_perc-severe");
+}
+
+// The rules column exists only when a row was decided by other rules than vb's: default indexes
+// keep their bytes; an unknown rule set is refused naming the line; the report never pools them.
+TEST(IndexRulesTest, TheRulesColumnOnlyWhenNeededAndReportsKeepRulesApart) {
+  TrialRow r;
+  r.task = "env000";
+  r.vehicle = "hmmwv";
+  r.system = "pid";
+  r.status = "success";
+  const std::string vb_text = IndexCsv({r});
+  EXPECT_EQ(vb_text.find("rules"), std::string::npos) << vb_text;
+  EXPECT_EQ(ParseIndexCsv(vb_text, "i.csv")[0].rules, "vb");
+  TrialRow v = r;
+  v.rules = "verti_bench";
+  v.status = "stuck";
+  const std::string text = IndexCsv({v});
+  EXPECT_NE(text.find(",message,rules\n"), std::string::npos) << text;
+  const std::vector<TrialRow> back = ParseIndexCsv(text, "i.csv");
+  ASSERT_EQ(back.size(), 1u);
+  EXPECT_EQ(back[0].rules, "verti_bench");
+  EXPECT_EQ(StableFields(back[0]), StableFields(v));
+  std::string bad = text;
+  bad.replace(bad.rfind("verti_bench"), std::string("verti_bench").size(), "paper");
+  try {
+    ParseIndexCsv(bad, "bad.csv");
+    FAIL() << "no InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.line(), 2);
+    EXPECT_EQ(e.key(), "rules");
+  }
+  // One pid/hmmwv success under vb, one stuck under verti_bench: two Table I rows.
+  const Report rep = BuildReport({r, v});
+  ASSERT_EQ(rep.table1.size(), 2u);
+  EXPECT_EQ(rep.table1[0].system, "pid/hmmwv");
+  EXPECT_EQ(rep.table1[0].stats.success, 1);
+  EXPECT_EQ(rep.table1[1].system, "pid/hmmwv/rules:verti_bench");
+  EXPECT_EQ(rep.table1[1].stats.stuck, 1);
 }
 
 }  // namespace

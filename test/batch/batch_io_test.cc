@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 
 #include <gtest/gtest.h>
 
@@ -80,6 +81,39 @@ TEST_F(BatchIoTest, UnrunRecordReadsBackWithNullMetrics) {
   EXPECT_EQ(row.message, "deformable \"terrain\"\nneeds soil");
   EXPECT_TRUE(std::isnan(row.sim_time_s));
   EXPECT_TRUE(std::isnan(row.mean_abs_roll_deg));
+}
+
+// A record says "rules" only when not vb's (default records keep their format); read back, and
+// an unrun (error/crashed) trial of a verti_bench batch says it too.
+TEST_F(BatchIoTest, TheRuleSetIsRecordedOnlyWhenNotVb) {
+  runner::TrialResult r;
+  r.task_name = "env042";
+  r.spec.vehicle = "hmmwv";
+  r.spec.system = "pid";
+  r.status = runner::TrialStatus::kStuck;
+  Provenance p;
+  const std::string path = (dir_ / "r.json").string();
+  WriteTrialJson(r, path, p);
+  std::ifstream in(path);
+  const std::string vb_text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(vb_text.find("rules"), std::string::npos) << vb_text;
+  EXPECT_EQ(ReadTrialJson(path).rules, "vb");
+  r.rule_set = runner::RuleSet::kVertiBench;
+  WriteTrialJson(r, path, p);
+  EXPECT_EQ(ReadTrialJson(path).rules, "verti_bench");
+  p.rules = "verti_bench";
+  WriteUnrunTrialJson(path, "env042", 0, p, "crashed", "killed");
+  EXPECT_EQ(ReadTrialJson(path).rules, "verti_bench");
+  std::ofstream(path, std::ios::trunc)
+      << "{\"task\": \"x\", \"pair\": 0, \"seed\": 0, \"vehicle\": \"v\", \"system\": \"s\", "
+         "\"rules\": \"paper\"}\n";
+  try {
+    ReadTrialJson(path);
+    FAIL() << "no InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.key(), "rules");
+    EXPECT_NE(std::string(e.what()).find("vb, verti_bench"), std::string::npos) << e.what();
+  }
 }
 
 TEST_F(BatchIoTest, TruncatedOrForeignRecordIsInputErrorNamingFile) {

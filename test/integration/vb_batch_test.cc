@@ -288,6 +288,14 @@ TEST_F(VbBatchTest, ChangedTaskIsReportedNotMixed) {
   const Outcome same = Sh(cmd + " --speed 4");
   EXPECT_EQ(same.exit_code, 0) << same.output;
   EXPECT_NE(same.output.find("6 already done, 0 to run"), std::string::npos) << same.output;
+  // ... and so are the original's rules (vb's, the default, are the same as not giving them).
+  const Outcome original = Sh(cmd + " --rules verti_bench");
+  EXPECT_EQ(original.exit_code, 2) << original.output;
+  EXPECT_NE(original.output.find("rules=verti_bench"), std::string::npos) << original.output;
+  const Outcome vb_rules = Sh(cmd + " --rules vb");
+  EXPECT_EQ(vb_rules.exit_code, 0) << vb_rules.output;
+  EXPECT_NE(vb_rules.output.find("6 already done, 0 to run"), std::string::npos)
+      << vb_rules.output;
 }
 
 // A vehicle or soil file edited after a batch (same names, other content) is a settings change:
@@ -347,6 +355,25 @@ TEST(VbBatchCliTest, UnloadableTaskBecomesErrorTrialsNotABatchFailure) {
   fs::remove_all(dir);
 }
 
+// --rules verti_bench: the settings, every record, the index and the report's labels say so.
+TEST(VbBatchCliTest, VertiBenchRulesAreNamedInEveryOutput) {
+  const fs::path dir = fs::temp_directory_path() / ("vb_batch_rules_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  const Outcome o = Sh(kBatch + " " VB_SOURCE_DIR "/tasks/env042.yaml --pairs 0 --time-limit 5 "
+                       "--traj-every 100 --quiet --rules verti_bench --out " + dir.string());
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(ReadFile(dir / "settings.txt").find(" rules=verti_bench"), std::string::npos);
+  EXPECT_NE(ReadFile(dir / "trials/env042_p0_s0_hmmwv_pid.json").find("\"rules\": \"verti_bench\""),
+            std::string::npos);
+  const std::string index = ReadFile(dir / "index.csv");
+  EXPECT_NE(index.find(",message,rules\n"), std::string::npos) << index;
+  EXPECT_NE(index.find(",verti_bench\n"), std::string::npos) << index;
+  ASSERT_EQ(Sh(kReport + " " + dir.string()).exit_code, 0);
+  EXPECT_NE(ReadFile(dir / "report/report.md").find("| pid/hmmwv/rules:verti_bench |"),
+            std::string::npos);
+  fs::remove_all(dir);
+}
+
 TEST(VbBatchCliTest, BadInputExitsTwoNamingTheCulprit) {
   const std::string task = VB_SOURCE_DIR "/tasks/env042.yaml";
   struct Case {
@@ -362,6 +389,9 @@ TEST(VbBatchCliTest, BadInputExitsTwoNamingTheCulprit) {
       {"'/nonexistent/*.yaml' --out /tmp/x", "glob matches no files"},
       {task, "--out"},
       {task + " --out /tmp/x --scale 0.1", "key '--scale': no task has world scale 0.1"},
+      {task + " --out /tmp/x --rules paper", "key '--rules': unknown rule set 'paper'; valid: vb, "
+                                             "verti_bench"},
+      {task + " --out /tmp/x --rules", "--rules"},
   };
   for (const Case& c : cases) {
     const Outcome o = Sh(kBatch + " " + c.args);

@@ -160,6 +160,27 @@ TEST_F(VbRunTest, SpeedFlagIsCheckedAndRecorded) {
   EXPECT_NEAR(std::stod(cell), 2.0, 0.3) << last;
 }
 
+// --rules: a bad value is exit 2 naming the flag and the valid sets; a verti_bench record says
+// "rules" (a vb one does not: the benchmark's records keep their format).
+TEST_F(VbRunTest, RulesFlagIsCheckedAndRecorded) {
+  for (const char* bad : {"paper", "VB", "\"\""}) {
+    const Outcome o = RunVbRun(kTask + " --vehicle hmmwv --pair 0 --rules " + bad + " --out " +
+                               (dir_ / "bad").string());
+    EXPECT_EQ(o.exit_code, 2) << bad << o.output;
+    EXPECT_NE(o.output.find("--rules"), std::string::npos) << o.output;
+  }
+  const Outcome o = RunVbRun(kTask + " --vehicle hmmwv --pair 0 --rules paper --out " +
+                             (dir_ / "bad").string());
+  EXPECT_NE(o.output.find("valid: vb, verti_bench"), std::string::npos) << o.output;
+  const std::string common = kTask + " --vehicle hmmwv --pair 0 --time-limit 2 --quiet --out ";
+  ASSERT_EQ(RunVbRun(common + (dir_ / "vt").string() + " --rules verti_bench").exit_code, 0);
+  ASSERT_EQ(RunVbRun(common + (dir_ / "vb").string() + " --rules vb").exit_code, 0);
+  const std::string stem = "env042_p0_s0_hmmwv_pid";
+  EXPECT_NE(ReadFile(dir_ / "vt" / (stem + ".json")).find("\"rules\": \"verti_bench\""),
+            std::string::npos);
+  EXPECT_EQ(ReadFile(dir_ / "vb" / (stem + ".json")).find("rules"), std::string::npos);
+}
+
 // The classical baselines through the command line: each runs, is named in the record's file
 // and JSON, and reruns are identical (their sampling is seeded by the trial seed).
 TEST_F(VbRunTest, EhAndMppiRunAndRerunIdentically) {

@@ -17,6 +17,7 @@
 #include "io/plot_png.h"
 #include "io/yaml_strict.h"
 #include "vb/engine/error.h"
+#include "vb/engine/runner/outcome_rules.h"
 #include "vb/terrain/obstacle_shape.h"
 #include "vb/terrain/surface_class.h"
 
@@ -74,6 +75,11 @@ batch::TrialRow ReadTrialJson(const std::string& path) {
   r.vehicle = As<std::string>(root, "vehicle", path);
   r.system = As<std::string>(root, "system", path);
   r.perception = root["perception"] ? As<std::string>(root, "perception", path) : "none";
+  r.rules = root["rules"] ? As<std::string>(root, "rules", path) : "vb";
+  if (!runner::RuleSetFromName(r.rules)) {
+    throw InputError(path, 0, "rules",
+                     "unknown rule set '" + r.rules + "'; valid: " + runner::RuleSetNames());
+  }
   r.status = As<std::string>(root, "status", path);
   if (!batch::IsKnownStatus(r.status)) {
     throw InputError(path, 0, "status", "unknown status '" + r.status + "'");
@@ -151,6 +157,7 @@ void WriteUnrunTrialJson(const std::string& path, const std::string& task_name, 
   t += "  \"vehicle\": " + JsonString(p.vehicle) + ",\n";
   t += "  \"system\": " + JsonString(p.system) + ",\n";
   if (p.perception != "none") t += "  \"perception\": " + JsonString(p.perception) + ",\n";
+  if (p.rules != "vb") t += "  \"rules\": " + JsonString(p.rules) + ",\n";
   t += "  \"status\": " + JsonString(status) + ",\n";
   t += "  \"failure_type\": " + JsonString(status) + ",\n";
   t += "  \"message\": " + JsonString(message) + ",\n";

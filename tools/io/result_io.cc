@@ -250,6 +250,9 @@ void WriteTrialJson(const runner::TrialResult& r, const std::string& path,
   if (r.target_speed_mps != runner::kDefaultTargetSpeed_mps) {
     o.Num("target_speed_mps", r.target_speed_mps);
   }
+  // Only under other rules than vb's (the original's): default records keep their format, and
+  // reports never count the two together (the index and the report's labels carry it too).
+  if (r.rule_set != runner::RuleSet::kVb) o.Str("rules", std::string(runner::RuleSetName(r.rule_set)));
   o.Str("status", status);
   o.Raw("failure_type", success ? "null" : JsonString(status));
   o.Str("message", r.message);

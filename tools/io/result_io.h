@@ -32,6 +32,9 @@ struct Provenance {
   // Perception preset and the FNV-1a of its file (written only when not "none").
   std::string perception = "none";
   std::string perception_fnv1a64;
+  // The rule set (runner::RuleSetName) of a trial that did not run (WriteUnrunTrialJson writes it
+  // when not "vb"); a trial that ran takes it from its TrialResult.
+  std::string rules = "vb";
   uint64_t seed = 0;
   std::string host;
   // Who drove a teleoperated trial (vb_view teleop --operator; written only when not empty).

@@ -261,7 +261,8 @@ RunCounts RunTrials(const Options& o, const vb::batch::MatrixSpec& spec, const P
       }
       try {
         vb::io::WriteUnrunTrialJson(json, spec.tasks[r.key.task_index].name, r.key.pair,
-                                    ProvenanceFor(spec.tasks[r.key.task_index], r.key),
+                                    ProvenanceFor(spec.tasks[r.key.task_index], r.key,
+                                                  o.rules),
                                     "crashed", why);
       } catch (const vb::IoError& e) {
         std::fprintf(stderr, "vb_batch: I/O error: %s\n", e.what());
@@ -336,6 +337,10 @@ int Run(const Options& o) {
   if (o.target_speed_mps != vb::runner::kDefaultTargetSpeed_mps) {
     settings += " target_speed_mps=" + vb::io::FormatDouble(o.target_speed_mps);
   }
+  // Likewise only for other rules than vb's: a directory never holds both.
+  if (o.rules != vb::runner::RuleSet::kVb) {
+    settings += " rules=" + std::string(vb::runner::RuleSetName(o.rules));
+  }
   for (const std::string& v : spec.vehicles) {
     settings +=
         " vehicle=" + v + ":" + vb::io::FileFnv1a64Hex(DataDir() + "/vehicles/" + v + ".yaml");
@@ -346,7 +351,7 @@ int Run(const Options& o) {
                 vb::io::FileFnv1a64Hex(vb::io::PerceptionFile(p, DataDir()));
   }
   const int lock_fd = vb::io::PrepareOutputDir(o.out_dir, "trials", settings, "vb_batch");
-  const vb::io::Provenance build = ProvenanceFor(spec.tasks.front(), all.front());
+  const vb::io::Provenance build = ProvenanceFor(spec.tasks.front(), all.front(), o.rules);
   const Plan plan = PlanResume(o, spec, mine, build);
 
   std::printf("vb_batch: %zu trials in matrix, shard %d/%d: %zu trials, %zu already done, "

@@ -37,6 +37,12 @@ execution:
   --speed V            the systems' target speed in m/s, in (0, 40] (default 4, the original's CLI
                        default at every scale; another speed is not the benchmark: settings.txt
                        and every record say it)
+  --rules vb|verti_bench
+                       the success and stuck rules (default vb: 10 m planar to the goal, stuck
+                       = moved <= 1 m in 10 s; verti_bench: the original's 8 m in 3-D to the
+                       marker 2 m above the goal, stuck = 10 s below 2 m/s; docs/task_format.md
+                       "Episode rules"). settings.txt, index.csv, the report's system labels and
+                       every record say verti_bench
   --soil NAME          soil parameters data/soils/NAME.yaml for tasks with mud, sand or snow
                        (default: verti_bench, the original's three soils)
   --traj-every N       keep every N-th physics step in the trajectories (default 1)
@@ -115,6 +121,8 @@ Options ParseArgs(int argc, char** argv) {
       o.time_limit_s = args.PositiveValueAtMost(vb::runner::kMaxTimeLimit_s);
     } else if (a == "--speed") {
       o.target_speed_mps = args.PositiveValueAtMost(vb::runner::kMaxTargetSpeed_mps);
+    } else if (a == "--rules") {
+      o.rules = vb::runner::ParseRuleSet("--rules", args.Value());
     } else if (a == "--traj-every") {
       o.traj_every = static_cast<int>(args.U64Value(1, 1000000));
     } else if (a == "--trial-timeout") {

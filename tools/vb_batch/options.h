@@ -25,6 +25,7 @@ struct Options {
   std::string shard = "0/1";
   double time_limit_s = vb::runner::EpisodeRules().time_limit_s;
   double target_speed_mps = vb::runner::kDefaultTargetSpeed_mps;
+  vb::runner::RuleSet rules = vb::runner::RuleSet::kVb;
   int traj_every = 1;
   double trial_timeout_s = 0.0;
   bool rerun_stale = false;

@@ -193,7 +193,7 @@ vb::batch::MatrixSpec BuildSpec(const Options& o, const std::vector<std::string>
 }
 
 vb::io::Provenance ProvenanceFor(const vb::batch::MatrixTask& t,
-                                 const vb::batch::TrialKey& key) {
+                                 const vb::batch::TrialKey& key, vb::runner::RuleSet rules) {
   vb::terrain::TaskSpec dummy;
   dummy.source_file = t.path;
   vb::runner::TrialSpec spec;
@@ -203,6 +203,7 @@ vb::io::Provenance ProvenanceFor(const vb::batch::MatrixTask& t,
   vb::io::Provenance p = vb::io::MakeProvenance(dummy, spec);
   p.perception = key.perception;
   p.task_fnv1a64 = t.task_fnv1a64;
+  p.rules = std::string(vb::runner::RuleSetName(rules));
   return p;
 }
 

@@ -49,7 +49,8 @@ const std::string& DataDir();
 const vb::nn::ModelStore& Models();
 // CPUs this process may run on (respects affinity masks set by Slurm or taskset).
 int DefaultJobs();
-// Provenance of a trial of task `t` (this build, this host, the task's hash).
-vb::io::Provenance ProvenanceFor(const vb::batch::MatrixTask& t, const vb::batch::TrialKey& key);
+// Provenance of a trial of task `t` (this build, this host, the task's hash, the rule set).
+vb::io::Provenance ProvenanceFor(const vb::batch::MatrixTask& t, const vb::batch::TrialKey& key,
+                                 vb::runner::RuleSet rules);
 
 }  // namespace vb_batch

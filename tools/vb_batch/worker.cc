@@ -28,8 +28,8 @@ namespace vb_batch {
   int code = 0;
   try {
     if (!t.load_error.empty()) {
-      vb::io::WriteUnrunTrialJson(stem_path + ".json", t.name, key.pair, ProvenanceFor(t, key),
-                                  "error", t.load_error);
+      vb::io::WriteUnrunTrialJson(stem_path + ".json", t.name, key.pair,
+                                  ProvenanceFor(t, key, o.rules), "error", t.load_error);
       std::_Exit(0);
     }
     try {
@@ -53,6 +53,7 @@ namespace vb_batch {
       vb::runner::EpisodeRules rules;
       rules.time_limit_s = o.time_limit_s;
       rules.target_speed_mps = o.target_speed_mps;
+      rules.rule_set = o.rules;
       rules.trajectory_every_n_steps = o.traj_every;
       rules.perception = vb::io::ResolvePerception(key.perception, DataDir());
       const std::optional<vb::soil::SoilConfig> soil =
@@ -71,8 +72,8 @@ namespace vb_batch {
                                &provenance);
       vb::io::WriteTrialJson(r, stem_path + ".json", provenance);
     } catch (const vb::InputError& e) {
-      vb::io::WriteUnrunTrialJson(stem_path + ".json", t.name, key.pair, ProvenanceFor(t, key),
-                                  "error", e.what());
+      vb::io::WriteUnrunTrialJson(stem_path + ".json", t.name, key.pair,
+                                  ProvenanceFor(t, key, o.rules), "error", e.what());
     }
   } catch (const vb::IoError& e) {
     // Disk full or similar: not the trial's fault, and not deterministic. No record, so the

@@ -232,7 +232,7 @@ bool Server::Handle(const Frame& request, std::string* reply_header,
 void Server::Configure(const json& j, std::string* reply) {
   const std::string op = "configure";
   CheckKeys(j, op, {"op", "tasks", "vehicle", "soil", "perception", "control_period_s",
-                    "time_limit_s",
+                    "time_limit_s", "rules",
                     "lookahead_m", "replan_period_s", "crops", "action", "speed_kp",
                     "trajectory_every_n_steps", "episode_cache"});
   GymConfig c;
@@ -260,6 +260,12 @@ void Server::Configure(const json& j, std::string* reply) {
   }
   c.time_limit_s = GetNumber(j, op, "time_limit_s", c.time_limit_s, 1e-9,
                             vb::runner::kMaxTimeLimit_s);
+  const std::string rules = GetString(j, op, "rules", "vb");
+  if (!runner::RuleSetFromName(rules)) {
+    throw RequestError("op 'configure': key 'rules': unknown rule set '" + rules + "'; valid: " +
+                       runner::RuleSetNames());
+  }
+  c.rules = *runner::RuleSetFromName(rules);
   c.observation.lookahead_m = GetNumber(j, op, "lookahead_m", c.observation.lookahead_m, 0.0, 1e4);
   c.observation.replan_period_s =
       GetNumber(j, op, "replan_period_s", c.observation.replan_period_s, 0.0, 1e4);
@@ -356,12 +362,15 @@ void Server::Configure(const json& j, std::string* reply) {
   r["step_s"] = runner::EpisodeRules().step_s;
   r["control_period_s"] = config_.control_period_s;
   r["time_limit_s"] = config_.time_limit_s;
+  r["rules"] = std::string(runner::RuleSetName(config_.rules));
   r["perception"] = perception_.name;
   json tj = json::array();
   for (const terrain::TaskSpec& t : tasks_) {
     tj.push_back({{"name", t.name}, {"file", t.source_file}, {"pairs", t.pairs.size()},
                   {"scale", t.scale}, {"size_x_m", t.size_x_m}, {"size_y_m", t.size_y_m},
-                  {"goal_radius_m", runner::EpisodeRules().goal_radius_m * t.scale}});
+                  {"goal_radius_m", config_.rules == runner::RuleSet::kVb
+                                        ? runner::EpisodeRules().goal_radius_m * t.scale
+                                        : runner::kVertiBenchGoalRadius_m * t.scale}});
   }
   r["tasks"] = tj;
   *reply = r.dump();
@@ -388,6 +397,7 @@ runner::Episode& Server::EpisodeFor(int task) {
   // control period (and runs the speed controller every physics step in speed mode).
   rules.control_period_s = rules.step_s;
   rules.time_limit_s = config_.time_limit_s;
+  rules.rule_set = config_.rules;
   rules.trajectory_every_n_steps = config_.trajectory_every_n_steps;
   rules.perception = perception_;
   CachedEpisode c;

@@ -38,6 +38,7 @@ struct GymConfig {
   std::string perception = "none";       // preset of data/perception or a .yaml file
   double control_period_s = 0.1;
   double time_limit_s = 60.0;
+  runner::RuleSet rules = runner::RuleSet::kVb;   // success and stuck rules (outcome_rules.h)
   controllers::ObservationConfig observation;
   std::vector<std::string> crop_names;   // one per observation.crops entry
   ActionMode action = ActionMode::kDirect;

@@ -55,6 +55,11 @@ options:
                      CLI default, the same at every scale; the learned systems scale their speed
                      action and observation by it, as the original's RL). Results at another
                      speed are not benchmark results; their records say target_speed_mps
+  --rules vb|verti_bench
+                     the success and stuck rules (default vb: 10 m planar to the goal, stuck =
+                     moved <= 1 m in 10 s; verti_bench: the original's 8 m in 3-D to the marker
+                     2 m above the goal, stuck = 10 s below 2 m/s; docs/task_format.md "Episode
+                     rules"); records under verti_bench say "rules": "verti_bench"
   --quiet            no per-trial lines, only the final summary
   --help             this text
   --version          the version and git commit of this build
@@ -84,6 +89,7 @@ struct Options {
   int traj_every = 1;
   double time_limit_s = vb::runner::EpisodeRules().time_limit_s;
   double target_speed_mps = vb::runner::kDefaultTargetSpeed_mps;
+  vb::runner::RuleSet rules = vb::runner::RuleSet::kVb;
   bool quiet = false;
   bool help = false;
   bool version = false;
@@ -118,6 +124,8 @@ Options ParseArgs(int argc, char** argv) {
       o.time_limit_s = args.PositiveValueAtMost(vb::runner::kMaxTimeLimit_s);
     } else if (a == "--speed") {
       o.target_speed_mps = args.PositiveValueAtMost(vb::runner::kMaxTargetSpeed_mps);
+    } else if (a == "--rules") {
+      o.rules = vb::runner::ParseRuleSet("--rules", args.Value());
     } else if (a == "--quiet") {
       o.quiet = true;
     } else if (args.IsFlag()) {
@@ -185,6 +193,7 @@ int Run(const Options& o) {
       o.perception == "none" ? "" : vb::io::PerceptionFile(o.perception, data_dir);
   rules.time_limit_s = o.time_limit_s;
   rules.target_speed_mps = o.target_speed_mps;
+  rules.rule_set = o.rules;
   rules.trajectory_every_n_steps = o.traj_every;
   std::vector<vb::runner::TrialResult> results;
   int counts[vb::runner::kNumTrialStatuses] = {};

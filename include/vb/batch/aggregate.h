@@ -33,7 +33,8 @@ struct GroupStats {
 GroupStats Aggregate(const std::vector<const TrialRow*>& rows);
 
 // "system/vehicle", with "/perception:<preset>" appended when the perception is not ground truth
-// (so Table I and Fig. 6 never pool results of different perception).
+// and "/rules:<set>" when the outcome rules are not vb's (so Table I and Fig. 6 never pool
+// results of different perception or rules).
 std::string SystemLabel(const TrialRow& row);
 
 struct Table1Row {

@@ -43,6 +43,9 @@ struct TrialRow {
   double wall_time_s = 0.0;
   std::string task_file;
   std::string message;
+  // The rule set that decided the outcome (runner::RuleSet: "vb" or "verti_bench"); the index
+  // has this column only when some row is not "vb".
+  std::string rules = "vb";
   // Not an index column: the record's trajectory length (-1 unknown, e.g. error/crashed), read
   // from the JSON so resume, merge and --topdown can check the trajectory file against it.
   long trajectory_samples = -1;
@@ -57,7 +60,8 @@ std::string PerceptionStemSuffix(const std::string& perception);
 // CSV text of the index (header + rows in the given order). Numbers print with "%.17g", NaN as
 // an empty field.
 std::string IndexCsv(const std::vector<TrialRow>& rows);
-// Parses IndexCsv output (also indexes without the perception column: "none"); throws InputError
+// Parses IndexCsv output (also indexes without the perception column: "none", or without the
+// rules column: "vb"); throws InputError
 // naming `source` and the line on malformed input: a missing or unexpected column (named), a
 // number that is not finite or is negative, an unknown status, a name that is not a file-name
 // component, or the same trial listed twice.

@@ -158,6 +158,9 @@ void ValidateRules(const EpisodeRules& rules) {
   if (!(rules.stuck_window_s > 0.0) || !(rules.stuck_window_s <= kMaxTimeLimit_s)) {
     throw InputError("", 0, "stuck_window_s", "must be in (0, " + Fmt(kMaxTimeLimit_s) + "] s");
   }
+  if (rules.rule_set != RuleSet::kVb && rules.rule_set != RuleSet::kVertiBench) {
+    throw InputError("", 0, "rule_set", "unknown rule set; valid: " + RuleSetNames());
+  }
   StepsPerControlPeriod(rules);
   ValidatePerception(rules.perception, "perception '" + rules.perception.name + "'");
 }
@@ -222,13 +225,14 @@ struct Episode::Impl {
   int substeps = 1;
   long window_steps = 1;
   long contact_gap_steps = 1;
-  double goal_radius_m = 10.0;
   double stuck_distance_m = 1.0;
+  double slow_step_m = 0.01;   // verti_bench rules: a step that moved less is slow
 
   // --- per trial (Reset) ---
   bool started = false;
   TrialSpec spec;
   Vec2 goal_m = Vec2::Zero();
+  GoalRule goal;
   std::unique_ptr<engine::PhysicsWorld> world;
   std::unique_ptr<vehicles::Vehicle> vehicle;
   std::unique_ptr<soil::ScmSoil> soil;
@@ -243,6 +247,8 @@ struct Episode::Impl {
   double Time() const { return static_cast<double>(progress.k) * rules.step_s; }
   void PhysicsStep();
   void Finish();
+  // The stuck condition of the rule set, evaluated on the steps so far.
+  bool Stuck() const;
   void Classify(TrialStatus* status, std::string* message) const;
   TrialResult MakeResult() const;
 };
@@ -310,10 +316,13 @@ void Episode::Impl::PhysicsStep() {
   // Success, then the early ends of certain failures, then the time limit.
   const Vec2 xy = s.pose_W.position.head<2>();
   progress.final_goal_distance_m = (goal_m - xy).norm();
-  if (rules.goal_ends_trial && progress.final_goal_distance_m <= goal_radius_m) {
+  if (rules.goal_ends_trial && goal.Reached(s.pose_W.position)) {
     progress.status = TrialStatus::kSuccess;
     progress.traversal_time_s = t;
-    progress.message = "reached the goal";
+    progress.message = rules.rule_set == RuleSet::kVb
+                           ? "reached the goal"
+                           : "reached the goal marker (" + Fmt(goal.Distance(s.pose_W.position)) +
+                                 " m away in 3-D)";
     progress.decided = true;
     Finish();
   } else if (std::abs(xy.x()) > 0.5 * task.size_x_m || std::abs(xy.y()) > 0.5 * task.size_y_m) {
@@ -322,14 +331,19 @@ void Episode::Impl::PhysicsStep() {
     progress.message = "left the world at (" + Fmt(xy.x()) + ", " + Fmt(xy.y()) + ") m";
     progress.decided = true;
     Finish();
-  } else if (rules.end_early && (std::abs(s.rpy.roll_rad) > kTippedOverRoll_rad ||
-                                 (metrics.window().Full() &&
-                                  metrics.window().Displacement() <= stuck_distance_m))) {
+  } else if (rules.end_early && (std::abs(s.rpy.roll_rad) > kTippedOverRoll_rad || Stuck())) {
     Finish();
   } else if (progress.k >= max_steps) {
     Finish();
   }
   lap(timings != nullptr ? &timings->bookkeeping_s : nullptr);
+}
+
+bool Episode::Impl::Stuck() const {
+  if (rules.rule_set == RuleSet::kVertiBench) {
+    return metrics.slow_steps().slow_steps() >= window_steps;
+  }
+  return metrics.window().Full() && metrics.window().Displacement() <= stuck_distance_m;
 }
 
 // Failure type from the current state (architecture §4).
@@ -339,10 +353,13 @@ void Episode::Impl::Classify(TrialStatus* status, std::string* message) const {
   if (final_roll > rules.rollover_roll_rad) {
     *status = TrialStatus::kRollover;
     *message = "rolled over (|roll| = " + Fmt(final_roll * kRadToDeg) + " deg at the end)";
-  } else if (metrics.window().Full() && metrics.window().Displacement() <= stuck_distance_m) {
+  } else if (Stuck()) {
     *status = TrialStatus::kStuck;
-    *message = "stuck (moved " + Fmt(metrics.window().Displacement()) + " m in the last " +
-               Fmt(rules.stuck_window_s) + " s)";
+    *message = rules.rule_set == RuleSet::kVb
+                   ? "stuck (moved " + Fmt(metrics.window().Displacement()) + " m in the last " +
+                         Fmt(rules.stuck_window_s) + " s)"
+                   : "stuck (every step of the last " + Fmt(rules.stuck_window_s) +
+                         " s below " + Fmt(slow_step_m / rules.step_s) + " m/s)";
   } else {
     *status = TrialStatus::kTimeout;
     *message = "time limit of " + Fmt(rules.time_limit_s) + " s reached";
@@ -375,6 +392,7 @@ TrialResult Episode::Impl::MakeResult() const {
   r.task_name = task.name;
   r.perception = rules.perception.name;
   r.target_speed_mps = rules.target_speed_mps;
+  r.rule_set = rules.rule_set;
   r.missed_obstacles = builder.perception().missed_obstacles();
   r.phantom_rocks = builder.perception().phantom_rocks();
   r.status = progress.status;
@@ -410,8 +428,8 @@ Episode::Episode(const terrain::TaskSpec& task, const vehicles::VehicleParams& v
   m.max_steps = std::max(1L, std::lround(rules.time_limit_s / dt));
   m.window_steps = std::max(1L, std::lround(rules.stuck_window_s / dt));
   m.contact_gap_steps = std::lround(kContactGap_s / dt);
-  m.goal_radius_m = rules.goal_radius_m * task.scale;
   m.stuck_distance_m = rules.stuck_distance_m * task.scale;
+  m.slow_step_m = VertiBenchSlowStep_m(dt, task.scale);
 }
 
 Episode::~Episode() = default;
@@ -435,6 +453,9 @@ void Episode::Reset(const TrialSpec& spec) {
   m.spec = spec;
   const terrain::StartGoalPair& pair = task.pairs[static_cast<size_t>(spec.pair_index)];
   m.goal_m = pair.goal_m;
+  m.goal = GoalRule::Make(m.rules.rule_set, pair.goal_m,
+                          m.ground.Height(pair.goal_m.x(), pair.goal_m.y()), task.scale,
+                          m.rules.goal_radius_m);
 
   // The per-trial world: a physics world with just the vehicle (the ground and the obstacles are
   // vb's own contact geometry, built once with the episode), the soil, if any, untouched.
@@ -504,14 +525,14 @@ void Episode::Reset(const TrialSpec& spec) {
   const int every = m.rules.trajectory_every_n_steps;
   const long reserve_steps =
       std::min(m.max_steps, std::lround(kTrajectoryReserve_s / m.rules.step_s));
-  m.metrics = TrialMetrics(m.window_steps, task.rocks.size() + task.trees.size(),
+  m.metrics = TrialMetrics(m.window_steps, m.slow_step_m, task.rocks.size() + task.trees.size(),
                            m.contact_gap_steps,
                            every > 0 ? static_cast<size_t>(reserve_steps / every) + 2 : 0);
   m.progress = Progress();
   const vehicles::VehicleState& s = m.vehicle->state();
   m.builder.Record(0, s);
   if (every > 0) m.metrics.trajectory().push_back(MakeSample(0.0, s, m.progress.inputs));
-  m.metrics.StartPosition(s.pose_W.position.head<2>());
+  m.metrics.StartPosition(s.pose_W.position);
   m.progress.final_goal_distance_m = (pair.goal_m - s.pose_W.position.head<2>()).norm();
   m.observation_valid = false;
   m.started = true;

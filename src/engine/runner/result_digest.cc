@@ -47,6 +47,8 @@ std::string TrialDigest(const TrialResult& r) {
   h.Add(r.spec.vehicle);
   h.Add(std::string(TrialStatusName(r.status)));
   h.Add(r.message);
+  // Only under other rules than vb's: digests of default trials stay as they were.
+  if (r.rule_set != RuleSet::kVb) h.Add("rules=" + std::string(RuleSetName(r.rule_set)));
   h.Add(r.sim_time_s);
   h.Add(r.traversal_time_s);
   h.Add(r.final_goal_distance_m);

@@ -29,16 +29,19 @@ TrajectorySample MakeSample(double t, const vehicles::VehicleState& s,
   return out;
 }
 
-TrialMetrics::TrialMetrics(long window_steps, size_t obstacle_count, long contact_gap_steps,
-                           size_t trajectory_capacity)
+TrialMetrics::TrialMetrics(long window_steps, double slow_step_m, size_t obstacle_count,
+                           long contact_gap_steps, size_t trajectory_capacity)
     : window_(window_steps),
+      slow_(slow_step_m),
       contact_gap_steps_(contact_gap_steps),
       last_touch_step_(obstacle_count, -contact_gap_steps - 1) {
   trajectory_.reserve(trajectory_capacity);
 }
 
-void TrialMetrics::StartPosition(const Vec2& xy) {
+void TrialMetrics::StartPosition(const Vec3& position_W) {
+  const Vec2 xy = position_W.head<2>();
   window_.Push(xy);
+  slow_.Start(position_W);
   last_xy_ = xy;
 }
 
@@ -58,6 +61,7 @@ void TrialMetrics::AddStep(const vehicles::VehicleState& s, const vehicles::Driv
   path_length_m_ += (xy - last_xy_).norm();
   last_xy_ = xy;
   window_.Push(xy);
+  slow_.Push(s.pose_W.position);
 }
 
 void TrialMetrics::AddContacts(long k, const std::vector<engine::ObstacleContact>& contacts,

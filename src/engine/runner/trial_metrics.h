@@ -1,4 +1,5 @@
-// Per-trial bookkeeping of the episode: signal statistics, driven distance, the stuck window,
+// Per-trial bookkeeping of the episode: signal statistics, driven distance, the stuck window and
+// the original's slow-step counter,
 // obstacle contact events and the trajectory. Plain copyable data, so an episode snapshot is a
 // copy of it. Internal to the runner.
 #pragma once
@@ -7,6 +8,7 @@
 
 #include "vb/engine/physics_world.h"
 #include "vb/engine/runner/episode.h"
+#include "vb/engine/runner/outcome_rules.h"
 #include "vb/vehicles/vehicle.h"
 
 namespace vb::runner {
@@ -72,9 +74,10 @@ TrajectorySample MakeSample(double t, const vehicles::VehicleState& s,
 class TrialMetrics {
  public:
   TrialMetrics() = default;
-  // Starts a trial: the stuck window, contact slots for every rock and tree, trajectory capacity.
-  TrialMetrics(long window_steps, size_t obstacle_count, long contact_gap_steps,
-               size_t trajectory_capacity);
+  // Starts a trial: the stuck window, the slow-step threshold (verti_bench rules), contact slots
+  // for every rock and tree, trajectory capacity.
+  TrialMetrics(long window_steps, double slow_step_m, size_t obstacle_count,
+               long contact_gap_steps, size_t trajectory_capacity);
 
   // After every physics step k (>= 1): statistics, path length, stuck window.
   void AddStep(const vehicles::VehicleState& s, const vehicles::DriverInputs& inputs,
@@ -85,15 +88,17 @@ class TrialMetrics {
                    engine::MultiBodyId vehicle_body, size_t rock_count);
 
   const PositionWindow& window() const { return window_; }
+  const SlowStepCounter& slow_steps() const { return slow_; }
   std::vector<TrajectorySample>& trajectory() { return trajectory_; }
   const std::vector<TrajectorySample>& trajectory() const { return trajectory_; }
   // Writes the statistics, path length and contact count into *r.
   void Fill(TrialResult* r) const;
-  void StartPosition(const Vec2& xy);
+  void StartPosition(const Vec3& position_W);
 
  private:
   RunningStats roll_, pitch_, abs_roll_, abs_pitch_, throttle_, steering_, abs_steering_;
   PositionWindow window_;
+  SlowStepCounter slow_;
   Vec2 last_xy_ = Vec2::Zero();
   double path_length_m_ = 0.0;
   int obstacle_contacts_ = 0;

@@ -4,7 +4,8 @@
 // Episode rules (docs/architecture.md §4): success when the reference point is within
 // 10 m * scale (planar) of the goal before 60 s; out_of_bounds as soon as it leaves the world;
 // otherwise at the end: rollover (|roll| > 30 deg), stuck (moved <= 1 m * scale in the last
-// 10 s), timeout, or sim_error (numerical trouble).
+// 10 s), timeout, or sim_error (numerical trouble). EpisodeRules::rule_set = kVertiBench
+// decides success and stuck by the original's rules instead (outcome_rules.h).
 // The core does no I/O: results come back as data; tools/io writes them.
 #pragma once
 
@@ -15,6 +16,7 @@
 
 #include "vb/controllers/controller.h"
 #include "vb/engine/fixed_vector.h"
+#include "vb/engine/runner/outcome_rules.h"
 #include "vb/engine/runner/perception.h"
 #include "vb/soil/soil_params.h"
 #include "vb/terrain/task.h"
@@ -66,6 +68,10 @@ struct EpisodeRules {
   // Target of the systems' speed controller (the original's CLI `speed`, default 4 m/s, the same
   // at every scale; the learned systems' speed action and speed observation are scaled by it).
   double target_speed_mps = kDefaultTargetSpeed_mps;
+  // Which success and stuck rules decide the trial (outcome_rules.h): vb's (goal_radius_m,
+  // stuck_distance_m over stuck_window_s) or the original's (8 m to the goal marker in 3-D, every
+  // step below 2 m/s for stuck_window_s; both x task.scale). Default vb.
+  RuleSet rule_set = RuleSet::kVb;
   double goal_radius_m = 10.0;         // scaled by task.scale
   double rollover_roll_rad = 30.0 * kPi / 180.0;
   double tipped_roll_rad = 45.0 * kPi / 180.0;  // TrialResult::tipped: |roll| ever above this
@@ -120,13 +126,14 @@ struct TrialResult {
   std::string task_name;
   std::string perception = "none";     // perception preset (docs/perception.md)
   double target_speed_mps = kDefaultTargetSpeed_mps;  // EpisodeRules::target_speed_mps
+  RuleSet rule_set = RuleSet::kVb;     // EpisodeRules::rule_set
   int missed_obstacles = 0;            // rocks and trees the perception missed this trial
   int phantom_rocks = 0;               // rocks it saw that are not there
   TrialStatus status = TrialStatus::kTimeout;
   std::string message;                 // why it ended (sim_error details)
   double sim_time_s = 0.0;             // simulated time when the trial ended
   double traversal_time_s = -1.0;      // time to goal for successes, -1 otherwise
-  double final_goal_distance_m = 0.0;
+  double final_goal_distance_m = 0.0;  // planar, under either rule set
   double path_length_m = 0.0;          // driven planar distance
   int obstacle_contacts = 0;           // contact events with rocks/trees (re-touch within 0.5 s: same event)
   // |roll| went above 45 deg at some step (a vehicle that rolls past it and falls back is not a
