@@ -10,13 +10,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <memory>
 #include <string>
 #include <vector>
 
-#include "io/soil_io.h"
 #include "io/vehicle_io.h"
 #include "support/slope_climb.h"
+#include "support/soil_sim.h"
 #include "support/vehicle_sim.h"
 #include "vb/soil/bekker.h"
 #include "vb/soil/scm_soil.h"
@@ -335,50 +334,14 @@ TEST(TrackM113, SkidSteerMomentBalance) {
   EXPECT_NEAR(sim_moment, m_r, 0.2 * m_r);
 }
 
-struct SoilRig {
-  terrain::TaskSpec task;
-  std::unique_ptr<terrain::Terrain> ground;
-  engine::PhysicsWorld world;
-  std::unique_ptr<soil::ScmSoil> soil;
-  std::unique_ptr<vehicles::Vehicle> vehicle;
-  vehicles::VehicleParams params = M113();
-  soil::SoilConfig config;
-
-  explicit SoilRig(terrain::SurfaceClass surface) {
-    task = test::PlaneTask(128.0, 0.0, 0.0, 0.8, surface);
-    ground = std::make_unique<terrain::Terrain>(task);
-    config = io::LoadSoil(std::string(VB_SOURCE_DIR) + "/data/soils/verti_bench.yaml");
-    soil = std::make_unique<soil::ScmSoil>(*ground, config);
-    vehicle = std::make_unique<vehicles::Vehicle>(params, *ground, FlatPose(params, -30.0, 0.01),
-                                                  &world);
-    vehicle->SetSoil(soil.get());
-  }
-  void Step(const vehicles::DriverInputs& in, const Vec3& drawbar_W = Vec3::Zero()) {
-    vehicle->SetInputs(in);
-    vehicle->Synchronize(kDt);
-    soil->EndStep(kDt);
-    if (drawbar_W.squaredNorm() > 0.0) {
-      world.ApplyBaseForce(vehicle->body(), drawbar_W, world.BasePose(vehicle->body()).position);
-    }
-    world.Step(kDt);
-    vehicle->UpdateState();
-  }
-  // Mean depth of the belt under the road wheels below the undisturbed surface (z = 0).
-  double MeanSinkage() const {
-    double s = 0.0;
-    const auto& w = vehicle->state().wheels;
-    for (const auto& ws : w) s += (params.wheel.radius_m - ws.center_W.z()) / w.size();
-    return s;
-  }
-};
-
 TEST(TrackM113, StaticSinkageVsBekker) {
   const vehicles::VehicleParams p = M113();
   const double w = TotalMass(p) * kGravity;
   const double b = p.tracks.shoe_width_m, l = ContactLength(p);
   for (terrain::SurfaceClass c :
        {terrain::SurfaceClass::kSnow, terrain::SurfaceClass::kMud, terrain::SurfaceClass::kSand}) {
-    SoilRig rig(c);
+    test::SoilSim rig(test::PlaneTask(128.0, 0.0, 0.0, 0.8, c), p, FlatPose(p, -30.0, 0.01),
+                      test::BenchSoil());
     vehicles::DriverInputs hold;
     hold.braking = 1.0;
     for (int k = 0; k < 4 * 200; ++k) rig.Step(hold);
@@ -406,8 +369,7 @@ TrackBinResult TrackBin(const vehicles::VehicleParams& p, double load_n, double 
   const terrain::TaskSpec task =
       test::PlaneTask(64.0, 0.0, 0.0, 0.8, terrain::SurfaceClass::kSand);
   const terrain::Terrain ground(task);
-  soil::SoilConfig config =
-      io::LoadSoil(std::string(VB_SOURCE_DIR) + "/data/soils/verti_bench.yaml");
+  const soil::SoilConfig config = test::BenchSoil();
   soil::ScmSoil bin(ground, config);
   const vehicles::TrackParams& t = p.tracks;
   const double h = t.shoe_height_m;
@@ -461,8 +423,7 @@ TEST(TrackM113, DrawbarPullVsSlipOnSand) {
   const vehicles::VehicleParams p = M113();
   const double load = TotalMass(p) * kGravity / 2.0;
   const double b = p.tracks.shoe_width_m, l = ContactLength(p);
-  soil::SoilConfig config =
-      io::LoadSoil(std::string(VB_SOURCE_DIR) + "/data/soils/verti_bench.yaml");
+  const soil::SoilConfig config = test::BenchSoil();
   const soil::SoilParams& sand = *config.For(terrain::SurfaceClass::kSand);
   for (double slip : {0.002, 0.005, 0.02, 0.1, 0.3}) {
     const TrackBinResult r = TrackBin(p, load, slip);
