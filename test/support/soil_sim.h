@@ -1,6 +1,7 @@
 // A vehicle on a world with soil, stepped in the runner's order (SetInputs -> Synchronize -> soil
 // EndStep -> Step -> UpdateState): the rig of the soil validation tests (the HMMWV's flat-soil
-// runs against the original's, its static sinkage, ruts and gradeability, the ARTcar's grid check).
+// runs against the original's, its static sinkage, ruts and gradeability, the ARTcar's grid check,
+// the M113's static sinkage).
 #pragma once
 
 #include <memory>
