@@ -76,13 +76,17 @@ std::string StatsCsv(const GroupStats& s) {
   return t;
 }
 
+// "/rules:NAME" for a row decided by other rules than vb's, else "": labels never pool the two.
+std::string RulesSuffix(const TrialRow& row) {
+  return row.rules != "vb" ? "/rules:" + row.rules : std::string();
+}
+
 }  // namespace
 
 std::string SystemLabel(const TrialRow& row) {
   std::string label = row.system + "/" + row.vehicle;
   if (!row.perception.empty() && row.perception != "none") label += "/perception:" + row.perception;
-  if (row.rules != "vb") label += "/rules:" + row.rules;
-  return label;
+  return label + RulesSuffix(row);
 }
 
 const std::vector<std::string>& FactorNames() {
@@ -174,8 +178,7 @@ Report BuildReport(const std::vector<TrialRow>& rows) {
       const std::string p = r.perception.empty() ? "none" : r.perception;
       present.insert(p);
       if (std::find(presets.begin(), presets.end(), p) == presets.end()) extra.insert(p);
-      const std::string system =
-          r.system + "/" + r.vehicle + (r.rules != "vb" ? "/rules:" + r.rules : std::string());
+      const std::string system = r.system + "/" + r.vehicle + RulesSuffix(r);
       systems.insert(system);
       groups[{system, p}].push_back(&r);
     }

@@ -228,10 +228,7 @@ std::vector<TrialRow> ParseIndexCsv(const std::string& text, const std::string& 
     r.task_file = f(22);
     r.message = f(23);
     r.rules = f(kRulesColumn);
-    if (!runner::RuleSetFromName(r.rules)) {
-      throw InputError(source, ln, "rules",
-                       "unknown rule set '" + r.rules + "'; valid: " + runner::RuleSetNames());
-    }
+    runner::ParseRuleSet("rules", r.rules, source, ln);
     // The names become file names (trials/<stem>.json, report/topdown/<stem>.png): an edited
     // index must not send vb_report or a merge outside its directories.
     const std::pair<const char*, const std::string*> names[] = {

@@ -76,10 +76,7 @@ batch::TrialRow ReadTrialJson(const std::string& path) {
   r.system = As<std::string>(root, "system", path);
   r.perception = root["perception"] ? As<std::string>(root, "perception", path) : "none";
   r.rules = root["rules"] ? As<std::string>(root, "rules", path) : "vb";
-  if (!runner::RuleSetFromName(r.rules)) {
-    throw InputError(path, 0, "rules",
-                     "unknown rule set '" + r.rules + "'; valid: " + runner::RuleSetNames());
-  }
+  runner::ParseRuleSet("rules", r.rules, path);
   r.status = As<std::string>(root, "status", path);
   if (!batch::IsKnownStatus(r.status)) {
     throw InputError(path, 0, "status", "unknown status '" + r.status + "'");

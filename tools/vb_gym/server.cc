@@ -7,6 +7,7 @@
 #include <deque>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 #include <tuple>
 #include <utility>
@@ -261,11 +262,9 @@ void Server::Configure(const json& j, std::string* reply) {
   c.time_limit_s = GetNumber(j, op, "time_limit_s", c.time_limit_s, 1e-9,
                             vb::runner::kMaxTimeLimit_s);
   const std::string rules = GetString(j, op, "rules", "vb");
-  if (!runner::RuleSetFromName(rules)) {
-    throw RequestError("op 'configure': key 'rules': unknown rule set '" + rules + "'; valid: " +
-                       runner::RuleSetNames());
-  }
-  c.rules = *runner::RuleSetFromName(rules);
+  const std::optional<runner::RuleSet> rule_set = runner::RuleSetFromName(rules);
+  if (!rule_set) throw RequestError("op 'configure': key 'rules': " + runner::UnknownRuleSet(rules));
+  c.rules = *rule_set;
   c.observation.lookahead_m = GetNumber(j, op, "lookahead_m", c.observation.lookahead_m, 0.0, 1e4);
   c.observation.replan_period_s =
       GetNumber(j, op, "replan_period_s", c.observation.replan_period_s, 0.0, 1e4);

@@ -39,12 +39,16 @@ inline std::optional<RuleSet> RuleSetFromName(std::string_view name) {
 }
 // "vb, verti_bench" for messages and --help.
 inline std::string RuleSetNames() { return "vb, verti_bench"; }
-// The rule set of `text`; InputError naming `key` (a CLI flag or config key) and the valid names.
-inline RuleSet ParseRuleSet(const std::string& key, const std::string& text) {
+// What is wrong with a name RuleSetFromName refuses (every reader's message).
+inline std::string UnknownRuleSet(const std::string& text) {
+  return "unknown rule set '" + text + "'; valid: " + RuleSetNames();
+}
+// The rule set of `text`; InputError naming `key` (a CLI flag, config key or column), and the
+// file and line it came from when there is one.
+inline RuleSet ParseRuleSet(const std::string& key, const std::string& text,
+                            const std::string& file = "", int line = 0) {
   const std::optional<RuleSet> r = RuleSetFromName(text);
-  if (!r) {
-    throw InputError("", 0, key, "unknown rule set '" + text + "'; valid: " + RuleSetNames());
-  }
+  if (!r) throw InputError(file, line, key, UnknownRuleSet(text));
   return *r;
 }
 
