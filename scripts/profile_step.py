@@ -2,14 +2,14 @@
 """Instructions per physics step, by stage, from callgrind: a step-cost measure that does not
 depend on what else the machine is doing (wall-clock timings on a shared machine do).
 
-Runs build/bench/vb_bench_episode under `valgrind --tool=callgrind` on PAIRS pairs (from pair SKIP) of
-TASK (a trimmed copy of the task, its relative paths made absolute) and prints, per physics step,
+Runs build/bench/vb_bench_episode under `valgrind --tool=callgrind` on PAIRS pairs (from pair
+SKIP) of TASK (a trimmed copy of the task, its relative paths made absolute) and prints, per step,
 the inclusive instruction counts of the stages of Episode::Impl::PhysicsStep. Compare two builds
 by running it with --build of each (the instruction count of the same binary and input is
 repeatable; different builds may take different trajectories, hence "per step").
 
-usage: scripts/profile_step.py TASK [--pairs 2] [--skip 0] [--build build] [--keep FILE] [--vehicle hmmwv]
-       [--soil FILE]
+usage: scripts/profile_step.py TASK [--pairs 2] [--skip 0] [--build build] [--keep FILE]
+       [--vehicle hmmwv] [--soil FILE]
 """
 import argparse
 import os

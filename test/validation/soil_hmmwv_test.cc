@@ -31,7 +31,8 @@ test::SoilSim Drive(SurfaceClass surface, double slope_rad, double x0) {
   const vehicles::VehicleParams params = test::Hmmwv();
   Pose pose;
   pose.rotation = Quat(Eigen::AngleAxisd(-slope_rad, Vec3::UnitY()));
-  pose.position = Vec3(x0, 0.0, std::tan(slope_rad) * x0 + params.wheel.radius_m / std::cos(slope_rad) + 0.01);
+  pose.position = Vec3(x0, 0.0,
+                       std::tan(slope_rad) * x0 + params.wheel.radius_m / std::cos(slope_rad) + 0.01);
   return test::SoilSim(test::PlaneTask(128.0, std::tan(slope_rad), 0.0, 0.8, surface), params, pose,
                        test::BenchSoil(), terrain::IsDeformable(surface));
 }

@@ -263,7 +263,9 @@ void Server::Configure(const json& j, std::string* reply) {
                             vb::runner::kMaxTimeLimit_s);
   const std::string rules = GetString(j, op, "rules", "vb");
   const std::optional<runner::RuleSet> rule_set = runner::RuleSetFromName(rules);
-  if (!rule_set) throw RequestError("op 'configure': key 'rules': " + runner::UnknownRuleSet(rules));
+  if (!rule_set) {
+    throw RequestError("op 'configure': key 'rules': " + runner::UnknownRuleSet(rules));
+  }
   c.rules = *rule_set;
   c.observation.lookahead_m = GetNumber(j, op, "lookahead_m", c.observation.lookahead_m, 0.0, 1e4);
   c.observation.replan_period_s =
