@@ -34,6 +34,21 @@ btDefaultCollisionConstructionInfo SmallPools() {
   return info;
 }
 
+// Bullet's multibody world without the work whose results vb never reads. Every collider is in
+// no collision group and every contact comes from AddContact, so the broadphase and narrowphase
+// would find nothing: the per-step AABB update of every link collider, the broadphase's pair
+// search and the dispatch over its (empty) pair list are skipped. The motion prediction before
+// the solve writes only the interpolation transforms of the bodies and their colliders
+// (m_*_interpolate), which continuous collision detection and deformable bodies read and vb has
+// neither: skipped too. The dynamics (forces, solver, integration) are Bullet's, unchanged, so
+// the results are bit-identical.
+class VbMultiBodyWorld : public btMultiBodyDynamicsWorld {
+ public:
+  using btMultiBodyDynamicsWorld::btMultiBodyDynamicsWorld;
+  void performDiscreteCollisionDetection() override {}
+  void predictUnconstraintMotion(btScalar /*timeStep*/) override {}
+};
+
 }  // namespace
 
 struct PhysicsWorld::Impl {
@@ -42,7 +57,7 @@ struct PhysicsWorld::Impl {
   btCollisionDispatcher dispatcher{&config};
   btDbvtBroadphase broadphase;
   btMultiBodyConstraintSolver solver;
-  btMultiBodyDynamicsWorld world{&dispatcher, &broadphase, &solver, &config};
+  VbMultiBodyWorld world{&dispatcher, &broadphase, &solver, &config};
 
   // Owned objects (Bullet does not own what is added to it).
   std::vector<std::unique_ptr<btCollisionShape>> shapes;
