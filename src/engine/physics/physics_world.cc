@@ -82,24 +82,47 @@ struct PhysicsWorld::Impl {
     std::vector<btVector3> prescribed_axis_P;
     std::vector<double> prescribed_q, prescribed_qdot;
     bool any_prescribed_rate = false;
-    // Link kinematics of the current state in the world frame, computed for all links at once on
-    // the first request after a change (the vehicle reads each wheel's pose and point velocities
-    // several times per step; walking the chain per request was the costliest read-out).
-    // Poses: one pass down the tree (parent before child). Velocities: Bullet's link-frame COM
-    // and angular velocities (index 0 = base), turned into the world frame.
+    // Link kinematics of the current state in the world frame, computed on the first request
+    // after a change (the vehicle reads each wheel's pose and point velocities several times per
+    // step; walking the chain per request was the costliest read-out). After a step or a state
+    // change every link is recomputed; after a prescribed joint's change only that link and its
+    // descendants (a steering angle moves the knuckle and its wheel): the other links' inputs are
+    // unchanged, so recomputing them would give the same numbers. Poses: down the tree (parent
+    // before child). Velocities: the link-frame COM and angular velocities (index 0 = base) by
+    // the operations of btMultiBody::compTreeLinkVelocities, in the same order, then turned into
+    // the world frame.
+    std::vector<int> parent;                                         // per link, -1 = the base
     mutable btAlignedObjectArray<btQuaternion> link_world_to_local;  // index 0 = base
     mutable btAlignedObjectArray<btVector3> link_origin_W;           // link COM, index 0 = base
     mutable std::vector<Pose> link_pose;                             // index = link
-    // Links from first_stale_pose on are to be recomputed (-1: the base too; a changed
-    // prescribed joint makes only its own link and those after it stale).
-    mutable int first_stale_pose = -1;
+    // Per index (0 = base, k + 1 = link k): pose, velocities to be recomputed; and whether any is.
+    // The world-frame forms the caller reads (link_pose, omega_W and vel_W) are made on the first
+    // request for that link only (the vehicle reads its wheels, not the carriers and knuckles).
+    mutable std::vector<char> pose_stale, vel_stale, pose_out_stale, vel_W_stale;
+    mutable bool any_pose_stale = true, any_vel_stale = true;
+    mutable std::vector<char> in_subtree;                            // scratch of MarkStale
     mutable btAlignedObjectArray<btVector3> omega, vel;              // link frames
     mutable btAlignedObjectArray<btVector3> omega_W, vel_W;          // world frame
     mutable btAlignedObjectArray<btVector3> d_omega_W, d_vel_W;      // prescribed rates' share
-    mutable bool velocities_valid = false;
     void Invalidate() const {
-      first_stale_pose = -1;
-      velocities_valid = false;
+      std::fill(pose_stale.begin(), pose_stale.end(), 1);
+      std::fill(vel_stale.begin(), vel_stale.end(), 1);
+      any_pose_stale = any_vel_stale = true;
+    }
+    // Marks `link` and its descendants (all after it: a parent comes before its children) as
+    // having new velocities, and with `pose` new poses too.
+    void MarkStale(int link, bool pose) {
+      const int n = static_cast<int>(parent.size());
+      for (int k = link; k < n; ++k) {
+        const size_t i = static_cast<size_t>(k);
+        const int p = parent[i];
+        in_subtree[i] = k == link || (p >= link && in_subtree[static_cast<size_t>(p)]);
+        if (!in_subtree[i]) continue;
+        vel_stale[i + 1] = 1;
+        if (pose) pose_stale[i + 1] = 1;
+      }
+      any_vel_stale = true;
+      if (pose) any_pose_stale = true;
     }
     // Scratch of forwardKinematics.
     btAlignedObjectArray<btQuaternion> world_to_local;
@@ -123,44 +146,100 @@ struct PhysicsWorld::Impl {
     return bodies[id];
   }
   void RefreshPoses(const Body& b) const {
+    if (!b.any_pose_stale) return;
     const btMultiBody* mb = b.mb.get();
-    if (b.first_stale_pose >= mb->getNumLinks()) return;
-    if (b.first_stale_pose < 0) {
+    if (b.pose_stale[0]) {
       b.link_world_to_local[0] = mb->getWorldToBaseRot();
       b.link_origin_W[0] = mb->getBasePos();
+      b.pose_stale[0] = 0;
     }
-    for (int k = std::max(0, b.first_stale_pose); k < mb->getNumLinks(); ++k) {
-      const int parent = mb->getParent(k);
+    for (int k = 0; k < mb->getNumLinks(); ++k) {
+      const size_t i = static_cast<size_t>(k);
+      if (!b.pose_stale[i + 1]) continue;
+      b.pose_stale[i + 1] = 0;
+      const int parent = b.parent[i];
       const btQuaternion w2l = mb->getParentToLocalRot(k) * b.link_world_to_local[parent + 1];
       b.link_world_to_local[k + 1] = w2l;
       b.link_origin_W[k + 1] =
           b.link_origin_W[parent + 1] + quatRotate(w2l.inverse(), mb->getRVector(k));
-      Pose& pose = b.link_pose[static_cast<size_t>(k)];
-      pose.position = FromBt(b.link_origin_W[k + 1]);
-      pose.rotation = FromBt(w2l.inverse()).normalized();
+      b.pose_out_stale[i] = 1;
     }
-    b.first_stale_pose = mb->getNumLinks();
+    b.any_pose_stale = false;
+  }
+  const Pose& LinkPose(const Body& b, int link) const {
+    RefreshPoses(b);
+    const size_t i = static_cast<size_t>(link);
+    Pose& pose = b.link_pose[i];
+    if (b.pose_out_stale[i]) {
+      pose.position = FromBt(b.link_origin_W[link + 1]);
+      pose.rotation = FromBt(b.link_world_to_local[link + 1].inverse()).normalized();
+      b.pose_out_stale[i] = 0;
+    }
+    return pose;
   }
   void RefreshVelocities(const Body& b) const {
-    if (b.velocities_valid) return;
+    if (!b.any_vel_stale) return;
     RefreshPoses(b);
-    b.mb->compTreeLinkVelocities(&b.omega[0], &b.vel[0]);
-    for (int k = 0; k <= b.mb->getNumLinks(); ++k) {
-      const btQuaternion local_to_world = b.link_world_to_local[k].inverse();
-      b.omega_W[k] = quatRotate(local_to_world, b.omega[k]);
-      b.vel_W[k] = quatRotate(local_to_world, b.vel[k]);
+    const btMultiBody* mb = b.mb.get();
+    const int n = mb->getNumLinks();
+    // link frames: btMultiBody::compTreeLinkVelocities, for the stale links
+    if (b.vel_stale[0]) {
+      const btQuaternion& base_rot = mb->getWorldToBaseRot();
+      b.omega[0] = quatRotate(base_rot, mb->getBaseOmega());
+      b.vel[0] = quatRotate(base_rot, mb->getBaseVel());
+    }
+    for (int k = 0; k < n; ++k) {
+      if (!b.vel_stale[static_cast<size_t>(k) + 1]) continue;
+      const btMultibodyLink& link = mb->getLink(k);
+      const int p = link.m_parent;
+      // btMultiBody::spatialTransform of the parent's velocities into this link's frame
+      const btMatrix3x3 rot(link.m_cachedRotParentToThis);
+      btVector3& w = b.omega[k + 1];
+      btVector3& v = b.vel[k + 1];
+      w = rot * b.omega[p + 1];
+      v = -link.m_cachedRVector.cross(w) + rot * b.vel[p + 1];
+      // plus the joint's rates along its axes
+      const btScalar* joint_vel = mb->getJointVelMultiDof(k);
+      for (int dof = 0; dof < link.m_dofCount; ++dof) {
+        w += joint_vel[dof] * link.getAxisTop(dof);
+        v += joint_vel[dof] * link.getAxisBottom(dof);
+      }
     }
     if (b.any_prescribed_rate) AddPrescribedRates(b);
-    b.velocities_valid = true;
+    for (size_t k = 0; k < b.vel_stale.size(); ++k) {
+      b.vel_W_stale[k] = b.vel_W_stale[k] || b.vel_stale[k];
+      b.vel_stale[k] = 0;
+    }
+    b.any_vel_stale = false;
   }
-  // Bullet's fixed links move with their parent only: add what the prescribed joints' rates give
-  // each link, one pass down the tree (parent before child), as a revolute joint's rate would.
+  // World-frame angular and COM velocity of index k (0 = base, link + 1): the link frame's turned
+  // into the world frame, plus the prescribed rates' share.
+  void WorldVelocities(const Body& b, int k) const {
+    RefreshVelocities(b);
+    if (!b.vel_W_stale[static_cast<size_t>(k)]) return;
+    const btQuaternion local_to_world = b.link_world_to_local[k].inverse();
+    b.omega_W[k] = quatRotate(local_to_world, b.omega[k]);
+    b.vel_W[k] = quatRotate(local_to_world, b.vel[k]);
+    if (b.any_prescribed_rate) {
+      b.omega_W[k] += b.d_omega_W[k];
+      b.vel_W[k] += b.d_vel_W[k];
+    }
+    b.vel_W_stale[static_cast<size_t>(k)] = 0;
+  }
+  // Bullet's fixed links move with their parent only: what the prescribed joints' rates give each
+  // stale link, down the tree (parent before child), as a revolute joint's rate would (added to
+  // its world-frame velocities by WorldVelocities). The shares of links that are not stale are
+  // those of the last pass: a change of any rate from or to zero makes every link stale
+  // (SetPrescribedJoint), so that pass computed them too.
   static void AddPrescribedRates(const Body& b) {
     const btMultiBody* mb = b.mb.get();
-    b.d_omega_W[0].setZero();
-    b.d_vel_W[0].setZero();
+    if (b.vel_stale[0]) {
+      b.d_omega_W[0].setZero();
+      b.d_vel_W[0].setZero();
+    }
     for (int k = 0; k < mb->getNumLinks(); ++k) {
-      const int p = mb->getParent(k) + 1;
+      if (!b.vel_stale[static_cast<size_t>(k) + 1]) continue;
+      const int p = b.parent[static_cast<size_t>(k)] + 1;
       const btVector3 lever = b.link_origin_W[k + 1] - b.link_origin_W[p];
       btVector3 dw = b.d_omega_W[p];
       btVector3 dv = b.d_vel_W[p] + dw.cross(lever);
@@ -176,8 +255,6 @@ struct PhysicsWorld::Impl {
       }
       b.d_omega_W[k + 1] = dw;
       b.d_vel_W[k + 1] = dv;
-      b.omega_W[k + 1] += dw;
-      b.vel_W[k + 1] += dv;
     }
   }
   btMultiBodyJointMotor* Motor(MultiBodyId id, int link) {
@@ -299,6 +376,13 @@ MultiBodyId PhysicsWorld::AddMultiBody(const MultiBodyBaseSpec& base,
     body.prescribed[static_cast<size_t>(i)] = 1;
     body.prescribed_axis_P[i] = ToBt(links[i].axis_P.normalized());
   }
+  body.parent.resize(static_cast<size_t>(n));
+  for (int i = 0; i < n; ++i) body.parent[static_cast<size_t>(i)] = links[i].parent;
+  body.pose_stale.assign(static_cast<size_t>(n) + 1, 1);
+  body.vel_stale.assign(static_cast<size_t>(n) + 1, 1);
+  body.in_subtree.assign(static_cast<size_t>(n), 0);
+  body.pose_out_stale.assign(static_cast<size_t>(n), 1);
+  body.vel_W_stale.assign(static_cast<size_t>(n) + 1, 1);
   body.link_world_to_local.resize(n + 1);
   body.link_origin_W.resize(n + 1);
   body.link_pose.resize(static_cast<size_t>(n));
@@ -333,14 +417,16 @@ void PhysicsWorld::SetPrescribedJoint(MultiBodyId id, int link, double q, double
   VB_DEMAND(link >= 0 && link < b.mb->getNumLinks() && b.prescribed[static_cast<size_t>(link)]);
   const size_t k = static_cast<size_t>(link);
   if (q == b.prescribed_q[k] && qdot == b.prescribed_qdot[k]) return;
-  // a link's descendants come after it: only those poses change (children have larger indices)
-  if (q != b.prescribed_q[k]) b.first_stale_pose = std::min(b.first_stale_pose, link);
+  // only the link and its descendants move: their poses if the angle changed, their velocities
+  b.MarkStale(link, /*pose=*/q != b.prescribed_q[k]);
   SetPrescribed(b.mb.get(), link, b.prescribed_axis_P[link], q, qdot, &b.prescribed_q,
                 &b.prescribed_qdot);
+  const bool had_rate = b.any_prescribed_rate;
   b.any_prescribed_rate = false;
   for (size_t i = 0; i < b.prescribed.size(); ++i)
     if (b.prescribed[i] && b.prescribed_qdot[i] != 0.0) b.any_prescribed_rate = true;
-  b.velocities_valid = false;
+  // the rates' pass runs for all links or none: every link's velocities are recomputed
+  if (b.any_prescribed_rate != had_rate) std::fill(b.vel_stale.begin(), b.vel_stale.end(), 1);
 }
 
 void PhysicsWorld::SetJointPosition(MultiBodyId id, int link, double q) {
@@ -464,22 +550,21 @@ Vec3 PhysicsWorld::BaseAngularVelocity(MultiBodyId id) const {
 Pose PhysicsWorld::LinkPose(MultiBodyId id, int link) const {
   const Impl::Body& b = impl_->Get(id);
   VB_DEMAND(link >= 0 && link < b.mb->getNumLinks());
-  impl_->RefreshPoses(b);
-  return b.link_pose[static_cast<size_t>(link)];
+  return impl_->LinkPose(b, link);
 }
 
 Vec3 PhysicsWorld::LinkPointVelocity(MultiBodyId id, int link, const Vec3& point_W) const {
   const Impl::Body& b = impl_->Get(id);
   VB_DEMAND(link >= 0 && link < b.mb->getNumLinks());
-  impl_->RefreshVelocities(b);
   const int k = link + 1;
+  impl_->WorldVelocities(b, k);
   return FromBt(b.vel_W[k] + b.omega_W[k].cross(ToBt(point_W) - b.link_origin_W[k]));
 }
 
 Vec3 PhysicsWorld::LinkAngularVelocity(MultiBodyId id, int link) const {
   const Impl::Body& b = impl_->Get(id);
   VB_DEMAND(link >= 0 && link < b.mb->getNumLinks());
-  impl_->RefreshVelocities(b);
+  impl_->WorldVelocities(b, link + 1);
   return FromBt(b.omega_W[link + 1]);
 }
 
