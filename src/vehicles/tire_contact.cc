@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 
 namespace vb::vehicles {
 
@@ -22,28 +23,61 @@ constexpr int kMaxSamples = 256;
 // wheel plane (a wheel lying nearly flat: 87 deg).
 constexpr double kMinCosTilt = 0.05;
 
+// floor and ceil, exactly (integral doubles), by truncation: cheaper than the library's on
+// x86-64 without SSE4.1's rounding instruction. |x| < 2^52 (beyond, x is integral already); a
+// zero's sign may differ from std::floor's, which none of the uses below can see (x + 1, x - 1).
+inline double Floor(double x) {
+  if (!(std::abs(x) < 4503599627370496.0)) return std::floor(x);  // also NaN
+  const double t = static_cast<double>(static_cast<int64_t>(x));
+  return t > x ? t - 1.0 : t;
+}
+inline double Ceil(double x) {
+  if (!(std::abs(x) < 4503599627370496.0)) return std::ceil(x);
+  const double t = static_cast<double>(static_cast<int64_t>(x));
+  return t < x ? t + 1.0 : t;
+}
+
+// What SectionVertices needs of the terrain and the rolling direction: the same for a wheel's
+// five slices.
+struct SectionFrame {
+  double inv_dx, inv_dy, du, dv, pu_scale, pv_scale, half_x, half_y;
+  double dw[5];
+};
+
+SectionFrame MakeSectionFrame(const terrain::Terrain& terrain, const Vec3& fwd) {
+  SectionFrame f;
+  f.inv_dx = 1.0 / terrain.spacing_x_m();
+  f.inv_dy = 1.0 / terrain.spacing_y_m();
+  f.du = fwd.x() * f.inv_dx;
+  f.dv = -fwd.y() * f.inv_dy;
+  // patch grid coordinates (as Terrain::PatchIndex)
+  f.pu_scale = terrain.patches().cols / terrain.size_x_m();
+  f.pv_scale = terrain.patches().rows / terrain.size_y_m();
+  f.half_x = 0.5 * terrain.size_x_m();
+  f.half_y = 0.5 * terrain.size_y_m();
+  const double dw[5] = {f.du, f.dv, f.du + f.dv, fwd.x() * f.pu_scale, -fwd.y() * f.pv_scale};
+  for (int k = 0; k < 5; ++k) f.dw[k] = dw[k];
+  return f;
+}
+
 // Positions a (ascending, from -r to r) along q0 + a fwd where the terrain section has a vertex:
 // the ends and every crossing of a grid line (u or v integral) or a cell diagonal (u + v
 // integral; grid coordinates as in Terrain); with `seams`, also every crossing of a patch
 // boundary (where the material, and so soil or rigid, may change). Returns their count.
-int SectionVertices(const terrain::Terrain& terrain, const Vec3& q0, const Vec3& fwd, double r,
-                    bool seams, std::array<double, kMaxSamples>* a) {
-  const double inv_dx = 1.0 / terrain.spacing_x_m(), inv_dy = 1.0 / terrain.spacing_y_m();
-  const double u0 = (q0.x() + 0.5 * terrain.size_x_m()) * inv_dx, du = fwd.x() * inv_dx;
-  const double v0 = (0.5 * terrain.size_y_m() - q0.y()) * inv_dy, dv = -fwd.y() * inv_dy;
-  // patch grid coordinates (as Terrain::PatchIndex)
-  const double pu_scale = terrain.patches().cols / terrain.size_x_m();
-  const double pv_scale = terrain.patches().rows / terrain.size_y_m();
-  const double w0[5] = {u0, v0, u0 + v0, (q0.x() + 0.5 * terrain.size_x_m()) * pu_scale,
-                        (0.5 * terrain.size_y_m() - q0.y()) * pv_scale};
-  const double dw[5] = {du, dv, du + dv, fwd.x() * pu_scale, -fwd.y() * pv_scale};
+int SectionVertices(const SectionFrame& fr, const Vec3& q0, double r, bool seams,
+                    std::array<double, kMaxSamples>* a) {
+  const double u0 = (q0.x() + fr.half_x) * fr.inv_dx;
+  const double v0 = (fr.half_y - q0.y()) * fr.inv_dy;
+  const double w0[5] = {u0, v0, u0 + v0, (q0.x() + fr.half_x) * fr.pu_scale,
+                        (fr.half_y - q0.y()) * fr.pv_scale};
+  const double* dw = fr.dw;
   const int families = seams ? 5 : 3;
   int count = 0;
   (*a)[count++] = -r;
   for (int f = 0; f < families; ++f) {
     if (std::abs(dw[f]) * r < 1e-9) continue;
     const double lo = w0[f] - r * std::abs(dw[f]), hi = w0[f] + r * std::abs(dw[f]);
-    const double first = std::floor(lo) + 1.0, last = std::ceil(hi) - 1.0;
+    const double first = Floor(lo) + 1.0, last = Ceil(hi) - 1.0;
     if (count + (last - first + 1.0) > kMaxSamples - 1) {  // too fine: uniform samples
       const int n = kMaxSamples;
       for (int j = 0; j < n; ++j) (*a)[j] = -r + 2.0 * r * j / (n - 1);
@@ -51,7 +85,20 @@ int SectionVertices(const terrain::Terrain& terrain, const Vec3& q0, const Vec3&
     }
     for (double m = first; m <= last; m += 1.0) (*a)[count++] = (m - w0[f]) / dw[f];
   }
-  std::sort(a->begin() + 1, a->begin() + count);
+  // ascending: std::sort of up to 16 elements is libstdc++'s insertion sort (stable); the same
+  // here without the calls, std::sort beyond
+  double* const first = a->data() + 1;
+  const int n_sort = count - 1;
+  if (n_sort > 16) {
+    std::sort(first, first + n_sort);
+  } else {
+    for (int i = 1; i < n_sort; ++i) {
+      const double v = first[i];
+      int j = i;
+      for (; j > 0 && v < first[j - 1]; --j) first[j] = first[j - 1];
+      first[j] = v;
+    }
+  }
   (*a)[count++] = r;
   // drop coincident crossings (a grid vertex is on all three families): no empty segments
   int kept = 1;
@@ -100,9 +147,10 @@ ContactGeometry FindWheelContact(const terrain::Terrain& terrain, const Vec3& c_
   // The query points are shifted sideways to where the tilted wheel plane is at the circle's
   // bottom depth, so that a cambered wheel samples the ground under its own tread.
   const Vec3 lateral_shift(r * down_w.x(), r * down_w.y(), 0.0);
+  const SectionFrame frame = MakeSectionFrame(terrain, fwd);
   for (int k = 0; k < kSlices; ++k) {
     const Vec3 cs = c_W + (-half_w + width_m * k / (kSlices - 1)) * axis_W;
-    const int n = SectionVertices(terrain, cs + lateral_shift, fwd, r, rigid_only, &a);
+    const int n = SectionVertices(frame, cs + lateral_shift, r, rigid_only, &a);
     double b_min = 1e300;
     for (int j = 0; j < n; ++j) {
       const Vec3 q = cs + a[j] * fwd + lateral_shift;
