@@ -93,19 +93,16 @@ void GroundContacts(const engine::ConvexShape& body, const Terrain& ground, doub
                  body_friction, max_contacts, scratch, out);
 }
 
-void GroundContacts(const engine::ConvexShape& body, const Terrain& ground, double max_h,
-                    double body_friction, int max_contacts, ContactScratch* scratch,
-                    std::vector<BodyContact>* out) {
-  std::vector<BodyContact>& cand = scratch->candidates;
-  cand.clear();
-  const HeightGrid& g = ground.grid();
-  const double west = -0.5 * ground.size_x_m(), north = 0.5 * ground.size_y_m();
-  const double dx = ground.spacing_x_m(), dy = ground.spacing_y_m();
-  if (body.aabb_min.z() > max_h) return;
+namespace {
 
-  // Body samples below the surface: push along the surface normal.
-  for (const Vec3& p : body.samples) {
-    if (p.z() >= max_h) continue;
+// Body samples below the surface: pushed along the surface normal. sample(i, &p) gives the i-th
+// sample's world position (false: it is at or above max_h, p not set).
+template <typename Sample>
+void SampleContacts(int n, const Sample& sample, const Terrain& ground, double body_friction,
+                    std::vector<BodyContact>* cand) {
+  for (int i = 0; i < n; ++i) {
+    Vec3 p;
+    if (!sample(i, &p)) continue;
     const double h = ground.Height(p.x(), p.y());
     if (p.z() >= h) continue;
     const SurfacePoint sp = ground.Query(p.x(), p.y());
@@ -115,9 +112,19 @@ void GroundContacts(const engine::ConvexShape& body, const Terrain& ground, doub
     k.depth_m = (sp.height_m - p.z()) * sp.normal_W.z();
     k.friction = std::min(body_friction,
                           IsDeformable(sp.surface) ? kBodyOnSoilFriction : sp.friction);
-    cand.push_back(k);
+    cand->push_back(k);
   }
-  // Ground vertices inside the body: push along the body's face of least penetration.
+}
+
+// Ground vertices inside the body: pushed along the body's face of least penetration. Then the
+// candidates are reduced to max_contacts.
+void VertexContactsAndReduce(const engine::ConvexShape& body, const Terrain& ground,
+                             double body_friction, int max_contacts, ContactScratch* scratch,
+                             std::vector<BodyContact>* out) {
+  std::vector<BodyContact>& cand = scratch->candidates;
+  const HeightGrid& g = ground.grid();
+  const double west = -0.5 * ground.size_x_m(), north = 0.5 * ground.size_y_m();
+  const double dx = ground.spacing_x_m(), dy = ground.spacing_y_m();
   const int ci0 = std::max(0, static_cast<int>(std::ceil((body.aabb_min.x() - west) / dx)));
   const int ci1 = std::min(g.cols - 1, static_cast<int>(std::floor((body.aabb_max.x() - west) / dx)));
   const int ri0 = std::max(0, static_cast<int>(std::ceil((north - body.aabb_max.y()) / dy)));
@@ -142,6 +149,45 @@ void GroundContacts(const engine::ConvexShape& body, const Terrain& ground, doub
     }
   }
   ReduceContacts(cand, max_contacts, &scratch->taken, out);
+}
+
+}  // namespace
+
+void GroundContacts(const engine::ConvexShape& body, const Terrain& ground, double max_h,
+                    double body_friction, int max_contacts, ContactScratch* scratch,
+                    std::vector<BodyContact>* out) {
+  scratch->candidates.clear();
+  if (body.aabb_min.z() > max_h) return;
+  const std::vector<Vec3>& samples = body.samples;
+  SampleContacts(
+      static_cast<int>(samples.size()),
+      [&](int i, Vec3* p) {
+        if (samples[static_cast<size_t>(i)].z() >= max_h) return false;
+        *p = samples[static_cast<size_t>(i)];
+        return true;
+      },
+      ground, body_friction, &scratch->candidates);
+  VertexContactsAndReduce(body, ground, body_friction, max_contacts, scratch, out);
+}
+
+void GroundContacts(const engine::ConvexShape& body, const std::vector<Vec3>& samples_B,
+                    const Pose& pose, const Terrain& ground, double max_h, double body_friction,
+                    int max_contacts, ContactScratch* scratch, std::vector<BodyContact>* out) {
+  scratch->candidates.clear();
+  if (body.aabb_min.z() > max_h) return;
+  const Mat3 r = pose.rotation.toRotationMatrix();   // as ConvexShape::TransformSamplesInto
+  SampleContacts(
+      static_cast<int>(samples_B.size()),
+      [&](int i, Vec3* p) {
+        const Vec3& s = samples_B[static_cast<size_t>(i)];
+        // the third coefficient of the same expression: Eigen computes it alone as it does
+        // within the whole vector (ConvexShapeTest.PosedHeightAloneIsBitIdentical)
+        if ((pose.position + r * s).z() >= max_h) return false;
+        *p = pose.position + r * s;
+        return true;
+      },
+      ground, body_friction, &scratch->candidates);
+  VertexContactsAndReduce(body, ground, body_friction, max_contacts, scratch, out);
 }
 
 namespace {

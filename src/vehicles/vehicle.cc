@@ -563,9 +563,10 @@ void Vehicle::AddBodyContacts() {
         terrain::MaxGroundHeightUnder(b.posed.aabb_min, b.posed.aabb_max, terrain_);
     if (b.posed.aabb_min.z() <= max_ground_h &&
         !terrain::GroundBeyondLowestFace(b.posed, terrain_)) {
-      b.for_ground_B[k].TransformSamplesInto(reference, &b.posed);
-      terrain::GroundContacts(b.posed, terrain_, max_ground_h, kBodyFriction,
-                              kMaxGroundContactsPerPiece, &b.scratch, &b.contacts);
+      // the samples posed on the way, only those below the highest ground vertex under the piece
+      terrain::GroundContacts(b.posed, b.for_ground_B[k].samples, reference, terrain_,
+                              max_ground_h, kBodyFriction, kMaxGroundContactsPerPiece, &b.scratch,
+                              &b.contacts);
     }
     if (obstacles_ != nullptr) {
       obstacles_->Overlapping(b.posed.aabb_min, b.posed.aabb_max, &b.scratch.obstacles);

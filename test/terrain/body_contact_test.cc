@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 
 #include "support/worlds.h"
 #include "vb/engine/convex_shape.h"
@@ -264,6 +265,60 @@ TEST(BodyContactTest, LowestFaceRejectNeverHidesAContact) {
   off.position = Vec3(15.5, 0.0, 2.0);
   EXPECT_FALSE(GroundBeyondLowestFace(Box(Vec3::Zero(), Vec3(1.2, 0.6, 0.2)).Transformed(off),
                                       ground));
+}
+
+// GroundContacts with the samples posed on the way (only those below the highest ground vertex)
+// must find exactly what posing them all first finds: the same contacts, bit for bit.
+TEST(BodyContactTest, LazilyPosedSamplesGiveBitIdenticalContacts) {
+  TaskSpec task = test::PlaneTask(32.0);
+  std::uint64_t state = 777;
+  auto uniform = [&state]() {  // deterministic LCG in [0, 1)
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return static_cast<double>(state >> 11) / 9007199254740992.0;
+  };
+  for (double& h : task.heights.heights_m) h = 0.6 * uniform();
+  const Terrain ground(task);
+  const engine::ConvexShape local =
+      engine::MakeConvexHull({Vec3(2.1, 0.75, 0.0), Vec3(2.1, -0.75, 0.0), Vec3(2.3, 0.75, 0.44),
+                              Vec3(2.3, -0.75, 0.44), Vec3(2.3, 0.75, 0.55), Vec3(2.3, -0.75, 0.55),
+                              Vec3(-2.3, 0.75, 0.0), Vec3(-2.3, -0.75, 0.0), Vec3(-2.3, 0.75, 0.55),
+                              Vec3(-2.3, -0.75, 0.55)},
+                             0.25, "belly");
+  ContactScratch scratch;
+  std::vector<BodyContact> all, lazy;
+  engine::ConvexShape posed, posed_without_samples;
+  int touching = 0;
+  for (int k = 0; k < 3000; ++k) {
+    Pose pose;
+    pose.position = Vec3(-8.0 + 16.0 * uniform(), -8.0 + 16.0 * uniform(), 0.1 + 0.8 * uniform());
+    pose.rotation = Quat(Eigen::AngleAxisd(0.6 * (uniform() - 0.5), Vec3::UnitX())) *
+                    Quat(Eigen::AngleAxisd(0.6 * (uniform() - 0.5), Vec3::UnitY())) *
+                    Quat(Eigen::AngleAxisd(6.3 * uniform(), Vec3::UnitZ()));
+    local.TransformInto(pose, &posed);
+    local.TransformInto(pose, &posed_without_samples, /*with_samples=*/false);
+    const double max_h = MaxGroundHeightUnder(posed.aabb_min, posed.aabb_max, ground);
+    all.clear();
+    lazy.clear();
+    GroundContacts(posed, ground, max_h, 0.8, 8, &scratch, &all);
+    GroundContacts(posed_without_samples, local.samples, pose, ground, max_h, 0.8, 8, &scratch,
+                   &lazy);
+    if (!all.empty()) ++touching;
+    ASSERT_EQ(all.size(), lazy.size()) << "pose " << k;
+    for (size_t i = 0; i < all.size(); ++i) {
+      EXPECT_EQ(std::memcmp(all[i].point_W.data(), lazy[i].point_W.data(), 3 * sizeof(double)), 0);
+      EXPECT_EQ(std::memcmp(all[i].normal_W.data(), lazy[i].normal_W.data(), 3 * sizeof(double)),
+                0);
+      EXPECT_EQ(std::memcmp(&all[i].depth_m, &lazy[i].depth_m, sizeof(double)), 0);
+      EXPECT_EQ(all[i].friction, lazy[i].friction);
+    }
+    // the height alone, as the lazy path computes it, is the posed sample's height bit for bit
+    const Mat3 r = pose.rotation.toRotationMatrix();
+    for (size_t i = 0; i < local.samples.size(); ++i) {
+      const double z = (pose.position + r * local.samples[i]).z();
+      EXPECT_EQ(std::memcmp(&z, &posed.samples[i].z(), sizeof(double)), 0) << k << " " << i;
+    }
+  }
+  EXPECT_GT(touching, 300);  // the poses do exercise contacts
 }
 
 }  // namespace

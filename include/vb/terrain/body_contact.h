@@ -72,6 +72,15 @@ void GroundContacts(const engine::ConvexShape& body_W, const Terrain& ground, do
 void GroundContacts(const engine::ConvexShape& body_W, const Terrain& ground,
                     double max_ground_h_m, double body_friction, int max_contacts,
                     ContactScratch* scratch, std::vector<BodyContact>* out);
+// The same with the samples still in the piece's own frame: `body_W` is the piece posed by
+// `pose` without its samples (ConvexShape::TransformInto with_samples = false), `samples_B` the
+// unposed piece's samples. Each sample's height is computed first and the sample posed only if it
+// is below max_ground_h_m; the result is bit for bit that of posing every sample
+// (ConvexShape::TransformSamplesInto) and calling the overload above.
+void GroundContacts(const engine::ConvexShape& body_W, const std::vector<Vec3>& samples_B,
+                    const Pose& pose, const Terrain& ground, double max_ground_h_m,
+                    double body_friction, int max_contacts, ContactScratch* scratch,
+                    std::vector<BodyContact>* out);
 
 // Appends at most max_per_obstacle contacts per touching obstacle.
 void ObstacleContacts(const engine::ConvexShape& body_W, const ObstacleField& field,
