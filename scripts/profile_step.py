@@ -32,7 +32,7 @@ STAGES = [
     ("    solver setup (rows)", r"btMultiBodyConstraintSolver::solveGroupCacheFriendlySetup\("),
     ("    solver sweeps",
      r"btSequentialImpulseConstraintSolver::solveGroupCacheFriendlyIterations\("),
-    ("    integration", r"btMultiBodyDynamicsWorld::integrateTransforms\("),
+    ("    integration", r"(btMultiBodyDynamicsWorld|VbMultiBodyWorld)::integrateTransforms\("),
     ("  state read-out", r"vb::vehicles::Vehicle::UpdateState\(\)"),
 ]
 

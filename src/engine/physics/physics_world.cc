@@ -42,11 +42,40 @@ btDefaultCollisionConstructionInfo SmallPools() {
 // (m_*_interpolate), which continuous collision detection and deformable bodies read and vb has
 // neither: skipped too. The dynamics (forces, solver, integration) are Bullet's, unchanged, so
 // the results are bit-identical.
+//
+// The integration is btMultiBodyDynamicsWorld::integrateMultiBodyTransforms without its last
+// part, the update of every link collider's world transform: nothing reads those transforms
+// during a step (the solver takes the links' own cached transforms and the contacts' world
+// points), so they keep the pose of the last state the adapter set (AddMultiBody, SetState,
+// SetJointPosition update them) and nothing reads them.
 class VbMultiBodyWorld : public btMultiBodyDynamicsWorld {
  public:
   using btMultiBodyDynamicsWorld::btMultiBodyDynamicsWorld;
   void performDiscreteCollisionDetection() override {}
   void predictUnconstraintMotion(btScalar /*timeStep*/) override {}
+  void integrateTransforms(btScalar timeStep) override {
+    btDiscreteDynamicsWorld::integrateTransforms(timeStep);  // rigid bodies (vb has none)
+    for (int i = 0; i < m_multiBodies.size(); ++i) {
+      btMultiBody* bod = m_multiBodies[i];
+      bool sleeping = bod->getBaseCollider() &&
+                      bod->getBaseCollider()->getActivationState() == ISLAND_SLEEPING;
+      for (int b = 0; b < bod->getNumLinks(); ++b) {
+        if (bod->getLink(b).m_collider &&
+            bod->getLink(b).m_collider->getActivationState() == ISLAND_SLEEPING)
+          sleeping = true;
+      }
+      if (sleeping) {
+        bod->clearVelocities();
+      } else if (!bod->isPosUpdated()) {
+        bod->stepPositionsMultiDof(timeStep);
+      } else {  // Bullet's RK4 integration (vb does not use it) left the position change here
+        btScalar* delta_q = const_cast<btScalar*>(bod->getVelocityVector()) + 6 +
+                            bod->getNumDofs() + bod->getNumDofs() * bod->getNumDofs();
+        bod->stepPositionsMultiDof(1, 0, delta_q);
+        bod->setPosUpdated(false);
+      }
+    }
+  }
 };
 
 }  // namespace
@@ -620,7 +649,9 @@ void PhysicsWorld::Step(double dt) {
     const btVector3 point_a = ToBt(c.point_W);
     const btVector3 normal = ToBt(c.normal_W);
     const btVector3 point_b = point_a + normal * c.depth_m;
-    btManifoldPoint pt(col->getWorldTransform().invXform(point_a), point_b, normal, -c.depth_m);
+    // the local points are Bullet's narrowphase's (contact caching), which vb does not run; the
+    // multibody solver reads the world points
+    btManifoldPoint pt(point_a, point_b, normal, -c.depth_m);
     pt.m_positionWorldOnA = point_a;
     pt.m_positionWorldOnB = point_b;
     pt.m_combinedFriction = c.friction;
