@@ -11,49 +11,9 @@
 namespace vb::terrain {
 namespace {
 
-// Position of (x, y) in grid coordinates: the cell (row r, col c) whose NW vertex is (r, c), and
-// the fractional offsets fu (east, along columns) and fv (south, along rows), both in [0, 1].
-struct CellCoords {
-  int r;
-  int c;
-  double fu;
-  double fv;
-};
-
-inline CellCoords Locate(const HeightGrid& g, double half_x, double half_y, double dx, double dy,
-                         double x_m, double y_m) {
-  // clamp to the grid first, so points outside read the border (continuous extension)
-  double u = std::min(std::max((x_m + half_x) / dx, 0.0), static_cast<double>(g.cols - 1));
-  double v = std::min(std::max((half_y - y_m) / dy, 0.0), static_cast<double>(g.rows - 1));
-  // NaN passes both clamps, and casting it to int is undefined (it read out of bounds): a
-  // non-finite query reads the north-west vertex instead; the caller's state check reports it.
-  if (std::isnan(u)) u = 0.0;
-  if (std::isnan(v)) v = 0.0;
-  // the last row/column belongs to the cell before it (fu or fv = 1 there)
-  const int c = std::min(static_cast<int>(u), g.cols - 2);
-  const int r = std::min(static_cast<int>(v), g.rows - 2);
-  return {r, c, u - c, v - r};
-}
-
-// Height and grid-coordinate gradient of the triangle containing the point. The SW-NE diagonal
-// is fu + fv = 1: below it (fu + fv <= 1) lies triangle (SW, NE, NW), above it (SW, SE, NE).
-// Each branch is the exact plane through its three vertices, so both agree on the diagonal.
-inline double PlaneHeight(const HeightGrid& g, const CellCoords& p, double* dh_du, double* dh_dv) {
-  const double* row0 = &g.heights_m[static_cast<size_t>(p.r) * g.cols + p.c];
-  const double* row1 = row0 + g.cols;
-  const double h_nw = row0[0];
-  const double h_ne = row0[1];
-  const double h_sw = row1[0];
-  const double h_se = row1[1];
-  if (p.fu + p.fv <= 1.0) {
-    *dh_du = h_ne - h_nw;
-    *dh_dv = h_sw - h_nw;
-    return h_nw + p.fu * (*dh_du) + p.fv * (*dh_dv);
-  }
-  *dh_du = h_se - h_sw;
-  *dh_dv = h_se - h_ne;
-  return h_se - (1.0 - p.fu) * (*dh_du) - (1.0 - p.fv) * (*dh_dv);
-}
+using detail::CellCoords;
+using detail::Locate;
+using detail::PlaneHeight;
 
 // Upward unit normal from the grid-coordinate gradient; v grows southward (-y), hence the sign.
 inline Vec3 NormalFromGradient(double dh_du, double dh_dv, double dx, double dy) {
@@ -75,14 +35,10 @@ Terrain::Terrain(const TaskSpec& task)
   VB_DEMAND(size_x_m_ > 0.0 && size_y_m_ > 0.0);
   VB_DEMAND(patches_.classes.size() == static_cast<size_t>(patches_.rows) * patches_.cols);
   VB_DEMAND(patches_.friction.size() == patches_.classes.size());
+  half_x_m_ = 0.5 * size_x_m_;
+  half_y_m_ = 0.5 * size_y_m_;
   dx_ = size_x_m_ / (grid_.cols - 1);
   dy_ = size_y_m_ / (grid_.rows - 1);
-}
-
-double Terrain::Height(double x_m, double y_m) const {
-  double dh_du, dh_dv;
-  return PlaneHeight(grid_, Locate(grid_, 0.5 * size_x_m_, 0.5 * size_y_m_, dx_, dy_, x_m, y_m),
-                     &dh_du, &dh_dv);
 }
 
 void Heights(const Terrain& terrain, const double* x_m, const double* y_m, int n, double* out) {
