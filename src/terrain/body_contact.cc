@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "vb/engine/exact_round.h"
+
 namespace vb::terrain {
 
 void ReduceContacts(const std::vector<BodyContact>& c, int max_contacts, std::vector<char>* taken,
@@ -43,10 +45,10 @@ double MaxGroundHeightUnder(const Vec3& lo, const Vec3& hi, const Terrain& groun
   const HeightGrid& g = ground.grid();
   const double west = -0.5 * ground.size_x_m(), north = 0.5 * ground.size_y_m();
   const double dx = ground.spacing_x_m(), dy = ground.spacing_y_m();
-  const int c0 = std::max(0, static_cast<int>(std::floor((lo.x() - west) / dx)));
-  const int c1 = std::min(g.cols - 1, static_cast<int>(std::ceil((hi.x() - west) / dx)));
-  const int r0 = std::max(0, static_cast<int>(std::floor((north - hi.y()) / dy)));
-  const int r1 = std::min(g.rows - 1, static_cast<int>(std::ceil((north - lo.y()) / dy)));
+  const int c0 = std::max(0, static_cast<int>(FloorExact((lo.x() - west) / dx)));
+  const int c1 = std::min(g.cols - 1, static_cast<int>(CeilExact((hi.x() - west) / dx)));
+  const int r0 = std::max(0, static_cast<int>(FloorExact((north - hi.y()) / dy)));
+  const int r1 = std::min(g.rows - 1, static_cast<int>(CeilExact((north - lo.y()) / dy)));
   // the cells covering the box (vertices one cell beyond it included): the surface is piecewise
   // linear, so its maximum over the footprint is at one of them; the centre covers a footprint
   // outside the grid (clamped heights)
@@ -70,10 +72,10 @@ bool GroundBeyondLowestFace(const engine::ConvexShape& body, const Terrain& grou
   const HeightGrid& g = ground.grid();
   const double west = -0.5 * ground.size_x_m(), north = 0.5 * ground.size_y_m();
   const double dx = ground.spacing_x_m(), dy = ground.spacing_y_m();
-  const double c0 = std::floor((body.aabb_min.x() - west) / dx);
-  const double c1 = std::ceil((body.aabb_max.x() - west) / dx);
-  const double r0 = std::floor((north - body.aabb_max.y()) / dy);
-  const double r1 = std::ceil((north - body.aabb_min.y()) / dy);
+  const double c0 = FloorExact((body.aabb_min.x() - west) / dx);
+  const double c1 = CeilExact((body.aabb_max.x() - west) / dx);
+  const double r0 = FloorExact((north - body.aabb_max.y()) / dy);
+  const double r1 = CeilExact((north - body.aabb_min.y()) / dy);
   // outside the grid the surface is clamped, not spanned by these vertices
   if (c0 < 0.0 || r0 < 0.0 || c1 > g.cols - 1 || r1 > g.rows - 1) return false;
   constexpr double kMargin = 1e-9;  // m: well above the rounding of posed vertices and samples
@@ -125,10 +127,10 @@ void VertexContactsAndReduce(const engine::ConvexShape& body, const Terrain& gro
   const HeightGrid& g = ground.grid();
   const double west = -0.5 * ground.size_x_m(), north = 0.5 * ground.size_y_m();
   const double dx = ground.spacing_x_m(), dy = ground.spacing_y_m();
-  const int ci0 = std::max(0, static_cast<int>(std::ceil((body.aabb_min.x() - west) / dx)));
-  const int ci1 = std::min(g.cols - 1, static_cast<int>(std::floor((body.aabb_max.x() - west) / dx)));
-  const int ri0 = std::max(0, static_cast<int>(std::ceil((north - body.aabb_max.y()) / dy)));
-  const int ri1 = std::min(g.rows - 1, static_cast<int>(std::floor((north - body.aabb_min.y()) / dy)));
+  const int ci0 = std::max(0, static_cast<int>(CeilExact((body.aabb_min.x() - west) / dx)));
+  const int ci1 = std::min(g.cols - 1, static_cast<int>(FloorExact((body.aabb_max.x() - west) / dx)));
+  const int ri0 = std::max(0, static_cast<int>(CeilExact((north - body.aabb_max.y()) / dy)));
+  const int ri1 = std::min(g.rows - 1, static_cast<int>(FloorExact((north - body.aabb_min.y()) / dy)));
   int hint = -1;
   for (int r = ri0; r <= ri1; ++r) {
     for (int c = ci0; c <= ci1; ++c) {

@@ -5,6 +5,7 @@
 
 #include <string>
 
+#include "vb/engine/exact_round.h"
 #include "vb/terrain/obstacle_shape.h"
 #include "vb/terrain/terrain_physics.h"
 
@@ -99,10 +100,10 @@ void ObstacleField::Overlapping(const Vec3& lo, const Vec3& hi, std::vector<int>
     std::fill(stamp_.begin(), stamp_.end(), 0);
     query_ = 1;
   }
-  const int c0 = std::clamp(static_cast<int>(std::floor((lo.x() - x0_) / cell_m_)), 0, cols_ - 1);
-  const int c1 = std::clamp(static_cast<int>(std::floor((hi.x() - x0_) / cell_m_)), 0, cols_ - 1);
-  const int r0 = std::clamp(static_cast<int>(std::floor((lo.y() - y0_) / cell_m_)), 0, rows_ - 1);
-  const int r1 = std::clamp(static_cast<int>(std::floor((hi.y() - y0_) / cell_m_)), 0, rows_ - 1);
+  const int c0 = std::clamp(static_cast<int>(FloorExact((lo.x() - x0_) / cell_m_)), 0, cols_ - 1);
+  const int c1 = std::clamp(static_cast<int>(FloorExact((hi.x() - x0_) / cell_m_)), 0, cols_ - 1);
+  const int r0 = std::clamp(static_cast<int>(FloorExact((lo.y() - y0_) / cell_m_)), 0, rows_ - 1);
+  const int r1 = std::clamp(static_cast<int>(FloorExact((hi.y() - y0_) / cell_m_)), 0, rows_ - 1);
   for (int r = r0; r <= r1; ++r) {
     for (int c = c0; c <= c1; ++c) {
       for (int k : cells_[static_cast<size_t>(r) * cols_ + c]) {

@@ -7,6 +7,7 @@
 #include <cstring>
 
 #include "vb/engine/error.h"
+#include "vb/engine/exact_round.h"
 
 namespace vb::terrain {
 namespace {
@@ -73,8 +74,8 @@ Vec3 Terrain::Normal(double x_m, double y_m) const {
 
 void Terrain::PatchIndex(double x_m, double y_m, int* row, int* col) const {
   // patch (i, j) covers x in [-sx/2 + j*sx/cols, -sx/2 + (j+1)*sx/cols), y likewise from the north
-  const int j = static_cast<int>(std::floor((x_m + 0.5 * size_x_m_) * patches_.cols / size_x_m_));
-  const int i = static_cast<int>(std::floor((0.5 * size_y_m_ - y_m) * patches_.rows / size_y_m_));
+  const int j = static_cast<int>(FloorExact((x_m + half_x_m_) * patches_.cols / size_x_m_));
+  const int i = static_cast<int>(FloorExact((half_y_m_ - y_m) * patches_.rows / size_y_m_));
   *col = std::min(std::max(j, 0), patches_.cols - 1);
   *row = std::min(std::max(i, 0), patches_.rows - 1);
 }

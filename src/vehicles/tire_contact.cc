@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdint>
 
+#include "vb/engine/exact_round.h"
+
 namespace vb::vehicles {
 
 namespace {
@@ -22,20 +24,6 @@ constexpr int kMaxSamples = 256;
 // Smallest cosine of the wheel plane's tilt from vertical used to map vertical depth into the
 // wheel plane (a wheel lying nearly flat: 87 deg).
 constexpr double kMinCosTilt = 0.05;
-
-// floor and ceil, exactly (integral doubles), by truncation: cheaper than the library's on
-// x86-64 without SSE4.1's rounding instruction. |x| < 2^52 (beyond, x is integral already); a
-// zero's sign may differ from std::floor's, which none of the uses below can see (x + 1, x - 1).
-inline double Floor(double x) {
-  if (!(std::abs(x) < 4503599627370496.0)) return std::floor(x);  // also NaN
-  const double t = static_cast<double>(static_cast<int64_t>(x));
-  return t > x ? t - 1.0 : t;
-}
-inline double Ceil(double x) {
-  if (!(std::abs(x) < 4503599627370496.0)) return std::ceil(x);
-  const double t = static_cast<double>(static_cast<int64_t>(x));
-  return t < x ? t + 1.0 : t;
-}
 
 // What SectionVertices needs of the terrain and the rolling direction: the same for a wheel's
 // five slices.
@@ -77,7 +65,7 @@ int SectionVertices(const SectionFrame& fr, const Vec3& q0, double r, bool seams
   for (int f = 0; f < families; ++f) {
     if (std::abs(dw[f]) * r < 1e-9) continue;
     const double lo = w0[f] - r * std::abs(dw[f]), hi = w0[f] + r * std::abs(dw[f]);
-    const double first = Floor(lo) + 1.0, last = Ceil(hi) - 1.0;
+    const double first = FloorExact(lo) + 1.0, last = CeilExact(hi) - 1.0;
     if (count + (last - first + 1.0) > kMaxSamples - 1) {  // too fine: uniform samples
       const int n = kMaxSamples;
       for (int j = 0; j < n; ++j) (*a)[j] = -r + 2.0 * r * j / (n - 1);
