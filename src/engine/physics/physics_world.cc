@@ -514,10 +514,31 @@ void PhysicsWorld::SetState(MultiBodyId id, const MultiBodyState& s) {
   b.Invalidate();
 }
 
+namespace {
+
+// btMultiBody::localPosToWorld(link, origin): the link's COM in the world frame, by the same
+// operations in the same order, reading the links' cached transforms directly (the library's
+// version goes through an out-of-line accessor and quatRotate per level).
+btVector3 LinkComWorld(const btMultiBody* mb, int i) {
+  btVector3 result(0, 0, 0);
+  while (i != -1) {
+    const btMultibodyLink& link = mb->getLink(i);
+    result += link.m_cachedRVector;
+    result = quatRotate(link.m_cachedRotParentToThis.inverse(), result);
+    i = link.m_parent;
+  }
+  result = quatRotate(mb->getWorldToBaseRot().inverse(), result);
+  result += mb->getBasePos();
+  return result;
+}
+
+}  // namespace
+
 void PhysicsWorld::ApplyLinkForce(MultiBodyId id, int link, const Vec3& force_W,
                                   const Vec3& point_W) {
   btMultiBody* mb = impl_->Get(id).mb.get();
-  const btVector3 com = mb->localPosToWorld(link, btVector3(0, 0, 0));
+  VB_DEMAND(link >= 0 && link < mb->getNumLinks());
+  const btVector3 com = LinkComWorld(mb, link);
   mb->addLinkForce(link, ToBt(force_W));
   mb->addLinkTorque(link, (ToBt(point_W) - com).cross(ToBt(force_W)));
 }
