@@ -116,27 +116,45 @@ int FloorToInt(double x) {
 }
 
 // Bottom of a flat belt segment from a to b (across it: half width hw along lat, which may be
-// tilted by the track's roll) on the vertical line through (x, y); false if the line misses it.
-// t: position along the segment's horizontal projection (0 at a, 1 at b), l: across it.
-bool BeltBottomAt(const Vec3& a, const Vec3& b, const Vec3& lat, double hw, double x, double y,
-                  double* z, double* t, double* l) {
-  const double sx = b.x() - a.x(), sy = b.y() - a.y();
-  const double len2 = sx * sx + sy * sy;
-  if (len2 < 1e-12) return false;
-  const double inv_len = 1.0 / std::sqrt(len2);
-  double lx = -sy * inv_len, ly = sx * inv_len;     // horizontal, across the segment
-  if (lx * lat.x() + ly * lat.y() < 0.0) {
-    lx = -lx;
-    ly = -ly;
+// tilted by the track's roll) on vertical lines: the segment's terms once (Init), then At per
+// line.
+struct BeltBottom {
+  double ax = 0.0, ay = 0.0, az = 0.0, dz = 0.0, sx = 0.0, sy = 0.0, len2 = 0.0;
+  double lx = 0.0, ly = 0.0, latz = 0.0, lat_h = 1.0, hw = 0.0;
+  bool valid = false;   // the segment's horizontal projection is not a point
+  void Init(const Vec3& a, const Vec3& b, const Vec3& lat, double half_w) {
+    ax = a.x();
+    ay = a.y();
+    az = a.z();
+    dz = b.z() - a.z();
+    sx = b.x() - a.x();
+    sy = b.y() - a.y();
+    len2 = sx * sx + sy * sy;
+    valid = !(len2 < 1e-12);
+    if (!valid) return;
+    const double inv_len = 1.0 / std::sqrt(len2);
+    lx = -sy * inv_len;     // horizontal, across the segment
+    ly = sx * inv_len;
+    if (lx * lat.x() + ly * lat.y() < 0.0) {
+      lx = -lx;
+      ly = -ly;
+    }
+    latz = lat.z();
+    lat_h = std::sqrt(std::max(1e-6, 1.0 - lat.z() * lat.z()));
+    hw = half_w;
   }
-  const double ux = x - a.x(), uy = y - a.y();
-  *t = (ux * sx + uy * sy) / len2;
-  *l = ux * lx + uy * ly;
-  if (std::abs(*l) > hw) return false;
-  const double lat_h = std::sqrt(std::max(1e-6, 1.0 - lat.z() * lat.z()));
-  *z = a.z() + *t * (b.z() - a.z()) + *l * lat.z() / lat_h;
-  return true;
-}
+  // The belt's bottom z on the vertical line through (x, y); false if the line misses it.
+  // t: position along the segment's horizontal projection (0 at a, 1 at b), l: across it.
+  bool At(double x, double y, double* z, double* t, double* l) const {
+    if (!valid) return false;
+    const double ux = x - ax, uy = y - ay;
+    *t = (ux * sx + uy * sy) / len2;
+    *l = ux * lx + uy * ly;
+    if (std::abs(*l) > hw) return false;
+    *z = az + *t * dz + *l * latz / lat_h;
+    return true;
+  }
+};
 
 }  // namespace
 
@@ -246,6 +264,7 @@ struct ScmSoil::Impl {
                   // pending's up again in the restored tiles)
   };
   std::vector<Work> rim, pending;
+  size_t n_rim = 0;   // this step's rim: rim[0, n_rim) (rim is a buffer written by index)
   int32_t queue_stamp = 0;
   // The erosion passes' work lists (this pass's, the next pass's): buffers written by index
   // (sized before a pass for the most it can add), their lengths in Erode's locals.
@@ -353,7 +372,7 @@ struct ScmSoil::Impl {
   template <int kStride>
   TrackSoilOutput Track(const SoilConfig& config, const TrackSoilInput& tr, double dt);
   std::vector<char> hit_rep_in;   // belt_node_stride 2: the pressed node itself in contact
-  void DepositOnRim(const Patch& patch, size_t begin, double volume);
+  void DepositOnRim(const Patch& patch, size_t begin, size_t end, double volume);
   // What one erosion pass's node visits share (Erode's locals, written back around ErodeVisit).
   struct ErodePass {
     double threshold;
@@ -364,6 +383,23 @@ struct ScmSoil::Impl {
     size_t n_out;
   };
   void ErodeVisit(const Work& w, ErodePass& s);
+  // The rim nodes of contact ct in the order +i, -i, +j, -j (deformable, not in contact this
+  // step, not yet on the rim), written from rim[n_rim] on; their tiles allocated if missing.
+  // Returns the new count.
+  __attribute__((noinline)) size_t RimOf(const Contact& ct, int32_t step, Work* rim,
+                                         size_t n_rim) {
+    Node* nbs[4];
+    Neighbours(ct.node, ct.i, ct.j, true, nbs);
+    for (int e = 0; e < 4; ++e) {
+      Node* nb = nbs[e];
+      if (nb == nullptr || nb->slot < 0 || nb->contact_step == step || nb->mark_step == step) {
+        continue;
+      }
+      nb->mark_step = step;
+      rim[n_rim++] = {ct.i + kDi[e], ct.j + kDj[e], 0, nb};
+    }
+    return n_rim;
+  }
   // The node at (i, j) if it exists (inside the world, its tile allocated), else nullptr: At's
   // look-up without allocation, inline (no call in the erosion's fast path).
   Node* Peek(int i, int j) const {
@@ -624,13 +660,13 @@ WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
   return out;
 }
 
-// Spreads `volume` (a height summed over cells) evenly over the rim nodes rim[begin..], but no
+// Spreads `volume` (a height summed over cells) evenly over the rim nodes rim[begin, end), but no
 // rim node is raised into the wheel above it (as Chrono caps the raise at the node's hit level):
 // water-filling, nodes under the tread take at most up to the tread, the rest share the
 // remainder. Only if every rim node is under the tread and full is the cap ignored (volume is
 // conserved first).
-void ScmSoil::Impl::DepositOnRim(const Patch& patch, size_t begin, double volume) {
-  const size_t n = rim.size() - begin;
+void ScmSoil::Impl::DepositOnRim(const Patch& patch, size_t begin, size_t end, double volume) {
+  const size_t n = end - begin;
   if (n == 0) {
     stats.lost_volume_m3 += volume * dx * dx;
     return;
@@ -644,6 +680,8 @@ void ScmSoil::Impl::DepositOnRim(const Patch& patch, size_t begin, double volume
       patch.half_width +
       std::abs(ax.z()) * std::sqrt(patch.radius * patch.radius + patch.half_width * patch.half_width) +
       1e-6;
+  BeltBottom belt;
+  if (patch.belt) belt.Init(patch.center, patch.belt_end, patch.axis, patch.half_width);
   for (size_t k = 0; k < n; ++k) {
     const Work& w = rim[begin + k];
     if (!patch.belt &&
@@ -651,10 +689,8 @@ void ScmSoil::Impl::DepositOnRim(const Patch& patch, size_t begin, double volume
       continue;
     }
     double z = 0.0, lat = 0.0, t = 0.0;
-    const bool under = patch.belt ? BeltBottomAt(patch.center, patch.belt_end, patch.axis,
-                                                 patch.half_width, w.i * dx, w.j * dx, &z, &t,
-                                                 &lat) &&
-                                        t >= 0.0 && t <= 1.0
+    const bool under = patch.belt ? belt.At(w.i * dx, w.j * dx, &z, &t, &lat) && t >= 0.0 &&
+                                        t <= 1.0
                                   : WheelBottomAt(patch.center, patch.axis, patch.radius,
                                                   patch.half_width, w.i * dx, w.j * dx, &z, &lat);
     if (under) room[k] = std::max(0.0, z - Level(*w.node));
@@ -815,7 +851,7 @@ TrackSoilOutput ScmSoil::Impl::Track(const SoilConfig& config, const TrackSoilIn
           align_up(std::max(i_lo, CeilToInt((a.x() + lo) / m.dx - 1e-9)), i_min);
       const int i1 = std::min(i_hi, FloorToInt((a.x() + hi) / m.dx + 1e-9));
       if (i0 > i1) continue;
-      // BeltBottomAt inlined along the row (t, l and the height are linear in x)
+      // BeltBottom::At inlined along the row (t, l and the height are linear in x)
       row.t_row = uy * sy / len2;
       row.l_row = uy * ly;
       const double z_row = az + row.t_row * dz + row.l_row * tilt;
@@ -1046,29 +1082,42 @@ void ScmSoil::EndStep(double /*dt*/) {
   Impl& m = *impl_;
   const BulldozingParams& bp = config_.bulldozing;
   if (bp.enabled) {
-    m.rim.clear();
+    // at most four rim nodes per contact: the rim written by index, no call on the way
+    if (m.rim.size() < 4 * m.contacts.size()) m.rim.resize(4 * m.contacts.size());
+    Impl::Work* const rim = m.rim.data();
+    size_t n_rim = 0;
     const int32_t step = m.step;   // a local: the node writes below cannot change it
+    const int gi_min = m.i_min, gj_min = m.j_min, gi_max = m.i_max, gj_max = m.j_max;
     for (const Impl::Patch& patch : m.patches) {
       // Rim: untouched deformable 4-neighbours of this patch's contact nodes, in contact order.
       double volume = 0.0;  // displaced height summed over nodes (all cells have equal area)
-      const size_t rim_begin = m.rim.size();
+      const size_t rim_begin = n_rim;
+      const Impl::Contact* const contacts = m.contacts.data();
       for (size_t k = patch.begin; k < patch.end; ++k) {
-        const Impl::Contact& ct = m.contacts[k];
+        const Impl::Contact& ct = contacts[k];
         volume += ct.flow_m;
-        Node* nbs[4];
-        m.Neighbours(ct.node, ct.i, ct.j, true, nbs);
-        for (int e = 0; e < 4; ++e) {
-          Node* nb = nbs[e];
-          if (nb == nullptr || nb->slot < 0 || nb->contact_step == step ||
-              nb->mark_step == step) {
-            continue;
-          }
-          nb->mark_step = step;
-          m.rim.push_back({ct.i + kDi[e], ct.j + kDj[e], 0, nb});
+        Node* const n = ct.node;
+        const int ci = ct.i, cj = ct.j;
+        const int li = (ci - gi_min) & kTileMask, lj = (cj - gj_min) & kTileMask;
+        if (!(li != 0 && li != kTileMask && lj != 0 && lj != kTileMask && ci < gi_max &&
+              cj < gj_max)) {
+          n_rim = m.RimOf(ct, step, rim, n_rim);   // may allocate tiles: not inline
+          continue;
         }
+        // all four in n's tile: Neighbours' pointer offsets, no call on the way
+        auto add = [&](int e, Node* nb) {
+          if (nb->slot < 0 || nb->contact_step == step || nb->mark_step == step) return;
+          nb->mark_step = step;
+          rim[n_rim++] = {ci + kDi[e], cj + kDj[e], 0, nb};
+        };
+        add(0, n + 1);
+        add(1, n - 1);
+        add(2, n + kTileSize);
+        add(3, n - kTileSize);
       }
-      if (volume > 0.0) m.DepositOnRim(patch, rim_begin, bp.flow_factor * volume);
+      if (volume > 0.0) m.DepositOnRim(patch, rim_begin, n_rim, bp.flow_factor * volume);
     }
+    m.n_rim = n_rim;
     m.Erode(bp);
   }
   m.contacts.clear();
@@ -1093,17 +1142,15 @@ void ScmSoil::Impl::Erode(const BulldozingParams& bp) {
   // The first pass's list: the rim, then the nodes carried over (their node pointers hold between
   // steps: tiles never move, and Restore looks them up again), each once.
   ++queue_stamp;
-  if (active_buf.size() < rim.size() + pending.size()) {
-    active_buf.resize(rim.size() + pending.size());
-  }
+  if (active_buf.size() < n_rim + pending.size()) active_buf.resize(n_rim + pending.size());
   size_t n_active = 0;
-  for (const std::vector<Work>* list : {&rim, &pending}) {
-    for (const Work& w : *list) {
-      if (w.node->queue_stamp == queue_stamp) continue;
-      w.node->queue_stamp = queue_stamp;
-      active_buf[n_active++] = w;
-    }
-  }
+  auto first = [this, &n_active](const Work& w) {
+    if (w.node->queue_stamp == queue_stamp) return;
+    w.node->queue_stamp = queue_stamp;
+    active_buf[n_active++] = w;
+  };
+  for (size_t k = 0; k < n_rim; ++k) first(rim[k]);
+  for (const Work& w : pending) first(w);
   pending.clear();
   // A local for the maximum raise: the node writes below (doubles and int32 stamps) could change
   // the member as far as the compiler knows, which would reload and store it at every raise.
