@@ -839,6 +839,16 @@ TrackSoilOutput ScmSoil::Impl::Track(const SoilConfig& config, const TrackSoilIn
     // it, so no node they skip could be a contact.
     const double z_slope = sx / len2 * dz + lx * tilt;
     const double zy_slope = sy / len2 * dz + ly * tilt;   // the belt height's slope along y
+    // A block's other nodes q (kMi, kMj) relative to the pressed one: across the belt
+    // (ml = l + ml_i[q] + ml_j[q]) and in the belt's height (mz = z + mz_i[q] + mz_j[q]), the
+    // terms of those sums once per segment.
+    double ml_i[3], ml_j[3], mz_i[3], mz_j[3];
+    for (int q = 0; q < 3; ++q) {
+      ml_i[q] = kMi[q] * lx * dx;
+      ml_j[q] = kMj[q] * ly * dx;
+      mz_i[q] = kMi[q] * dx * z_slope;
+      mz_j[q] = kMj[q] * dx * zy_slope;
+    }
     m.hits.clear();
     m.hit_rep_in.clear();
     for (int j = align_up(j_lo, m.j_min); j <= j_hi; j += stride) {
@@ -932,9 +942,9 @@ TrackSoilOutput ScmSoil::Impl::Track(const SoilConfig& config, const TrackSoilIn
               bool any = false;
               for (int q = 0; q < 3 && !any; ++q) {
                 const Node& mt = node[kMateOffset[q]];
-                const double ml = l + kMi[q] * lx * dx + kMj[q] * ly * dx;
+                const double ml = l + ml_i[q] + ml_j[q];
                 if (mt.slot < 0 || !(std::abs(ml) < half_w + 0.5 * dx)) continue;
-                const double mz = hit_z + kMi[q] * dx * z_slope + kMj[q] * dx * zy_slope;
+                const double mz = hit_z + mz_i[q] + mz_j[q];
                 any = !AboveLevel(mt, mz);
               }
               if (!any) continue;
@@ -1024,10 +1034,10 @@ TrackSoilOutput ScmSoil::Impl::Track(const SoilConfig& config, const TrackSoilIn
         const double level_rep = Level(nd);
         for (int q = 0; q < 3; ++q) {
           Node& mt = (&nd)[kMateOffset[q]];
-          const double ml = h.lat + kMi[q] * lx * dx + kMj[q] * ly * dx;
+          const double ml = h.lat + ml_i[q] + ml_j[q];
           if (mt.slot < 0 || !(std::abs(ml) < half_w + 0.5 * dx)) continue;
           const double target = level_rep + (mt.base_m - nd.base_m);
-          const double mz = h.p.z() + kMi[q] * dx * z_slope + kMj[q] * dx * zy_slope;
+          const double mz = h.p.z() + mz_i[q] + mz_j[q];
           if (rep_in && !(Level(mt) > target)) {   // at or below the pressed node: follows it
             mt.contact_step = m.step;
             m.contacts.push_back({h.i + kMi[q], h.j + kMj[q], 0.0, &mt});
