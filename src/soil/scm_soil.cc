@@ -1109,21 +1109,35 @@ void ScmSoil::EndStep(double /*dt*/) {
         Node* const n = ct.node;
         const int ci = ct.i, cj = ct.j;
         const int li = (ci - gi_min) & kTileMask, lj = (cj - gj_min) & kTileMask;
-        if (!(li != 0 && li != kTileMask && lj != 0 && lj != kTileMask && ci < gi_max &&
-              cj < gj_max)) {
-          n_rim = m.RimOf(ct, step, rim, n_rim);   // may allocate tiles: not inline
-          continue;
+        // the 4-neighbours as Neighbours finds them; if one does not exist (outside the world
+        // or its tile not allocated), RimOf, which allocates the missing tiles in Neighbours'
+        // order (not inline: the loop has no call on the way)
+        Node *nb0, *nb1, *nb2, *nb3;
+        if (li != 0 && li != kTileMask && lj != 0 && lj != kTileMask && ci < gi_max &&
+            cj < gj_max) {
+          nb0 = n + 1;
+          nb1 = n - 1;
+          nb2 = n + kTileSize;
+          nb3 = n - kTileSize;
+        } else {
+          nb0 = li != kTileMask && ci < gi_max ? n + 1 : m.Peek(ci + 1, cj);
+          nb1 = li != 0 ? n - 1 : m.Peek(ci - 1, cj);
+          nb2 = lj != kTileMask && cj < gj_max ? n + kTileSize : m.Peek(ci, cj + 1);
+          nb3 = lj != 0 ? n - kTileSize : m.Peek(ci, cj - 1);
+          if (nb0 == nullptr || nb1 == nullptr || nb2 == nullptr || nb3 == nullptr) {
+            n_rim = m.RimOf(ct, step, rim, n_rim);
+            continue;
+          }
         }
-        // all four in n's tile: Neighbours' pointer offsets, no call on the way
         auto add = [&](int e, Node* nb) {
           if (nb->slot < 0 || nb->contact_step == step || nb->mark_step == step) return;
           nb->mark_step = step;
           rim[n_rim++] = {ci + kDi[e], cj + kDj[e], 0, nb};
         };
-        add(0, n + 1);
-        add(1, n - 1);
-        add(2, n + kTileSize);
-        add(3, n - kTileSize);
+        add(0, nb0);
+        add(1, nb1);
+        add(2, nb2);
+        add(3, nb3);
       }
       if (volume > 0.0) m.DepositOnRim(patch, rim_begin, n_rim, bp.flow_factor * volume);
     }
