@@ -172,6 +172,7 @@ def test_the_original_rules_reach_the_episode():
                 if terminated or truncated:
                     break
             assert info["outcome"]["status"] == "success", info
+            assert info["outcome"]["rules"] == rules   # the outcome names what decided it
             ends[rules] = info["outcome"]["final_goal_distance_m"]
     assert 9.9 < ends["vb"] <= 10.0
     assert ends["verti_bench"] < 8.0

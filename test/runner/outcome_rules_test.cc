@@ -71,6 +71,19 @@ TEST(OutcomeRulesTest, GoalRulesOnConstructedPositions) {
   EXPECT_DOUBLE_EQ(GoalRule::Make(RuleSet::kVb, goal, ground, 0.1, 10.0).radius_m, 1.0);
 }
 
+// The circle pictures draw: vb's planar radius; the original's 8 m sphere around the marker 2 m up,
+// cut at the goal's ground height (sqrt(60) = 7.746 m), both scaled with the world.
+TEST(OutcomeRulesTest, GoalCircleRadiusOfEachRuleSet) {
+  EXPECT_DOUBLE_EQ(GoalCircleRadius_m(RuleSet::kVb, 1.0, 10.0), 10.0);
+  EXPECT_DOUBLE_EQ(GoalCircleRadius_m(RuleSet::kVb, 0.1, 10.0), 1.0);
+  EXPECT_NEAR(GoalCircleRadius_m(RuleSet::kVertiBench, 1.0, 10.0), 7.7460, 1e-4);
+  EXPECT_NEAR(GoalCircleRadius_m(RuleSet::kVertiBench, 0.1, 10.0), 0.77460, 1e-5);
+  // A point on the circle at ground height is exactly 8 m from the marker.
+  const GoalRule vt = GoalRule::Make(RuleSet::kVertiBench, Vec2(0.0, 0.0), 3.0, 1.0, 10.0);
+  const double r = GoalCircleRadius_m(RuleSet::kVertiBench, 1.0, 10.0);
+  EXPECT_NEAR(vt.Distance(Vec3(r, 0.0, 3.0)), 8.0, 1e-12);
+}
+
 // The original's counter: 0.01 m per 5 ms step (2 m/s) at scale 1; a step at 1.5 m/s is slow, one
 // at 2.5 m/s resets it; 3-D, so a vertical creep counts as movement.
 TEST(OutcomeRulesTest, SlowStepCounterCountsConsecutiveSlowSteps) {

@@ -149,6 +149,26 @@ TEST_F(ResultFilesTest, SummaryCsvQuotesMessages) {
   EXPECT_NE(csv.find("env007,3,18446744073709551615,hmmwv,pid,stuck,,12.5,"), std::string::npos);
 }
 
+// The summary names the rule set that decided its trials when it is not vb's (as the index does);
+// default summaries keep their columns.
+TEST_F(ResultFilesTest, SummaryCsvNamesOtherRuleSets) {
+  const fs::path plain = dir_ / "plain.csv";
+  WriteSummaryCsv({SampleResult()}, plain.string());
+  const std::string plain_csv = ReadFile(plain);
+  EXPECT_EQ(plain_csv.find("rules"), std::string::npos) << plain_csv;
+  EXPECT_NE(plain_csv.find("real_time_factor,message\n"), std::string::npos) << plain_csv;
+
+  runner::TrialResult original = SampleResult();
+  original.rule_set = runner::RuleSet::kVertiBench;
+  original.message = "reached the goal";
+  const fs::path mixed = dir_ / "mixed.csv";
+  WriteSummaryCsv({SampleResult(), original}, mixed.string());
+  const std::string csv = ReadFile(mixed);
+  EXPECT_NE(csv.find("real_time_factor,message,rules\n"), std::string::npos) << csv;
+  EXPECT_NE(csv.find(",reached the goal,verti_bench\n"), std::string::npos) << csv;
+  EXPECT_NE(csv.find("stuck\",vb\n"), std::string::npos) << csv;   // the quoted message, then vb
+}
+
 TEST_F(ResultFilesTest, UnwritablePathIsAnIoErrorAndLeavesNoTemporary) {
   const fs::path path = dir_ / "missing_dir" / "r.csv";
   EXPECT_THROW(WriteTrajectoryCsv(SampleResult(), path.string()), IoError);

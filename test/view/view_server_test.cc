@@ -57,9 +57,11 @@ std::string Body(const std::string& response) {
 
 // A short real trial of env042 pair 1, written as vb_run writes it, in `dir`.
 std::string WriteTrial(const fs::path& dir,
-                       const std::string& task_file = kSource + "/tasks/env042.yaml") {
+                       const std::string& task_file = kSource + "/tasks/env042.yaml",
+                       runner::RuleSet rule_set = runner::RuleSet::kVb) {
   const terrain::TaskSpec task = io::LoadTask(task_file);
   runner::EpisodeRules rules;
+  rules.rule_set = rule_set;
   rules.time_limit_s = 1.0;
   rules.trajectory_every_n_steps = 10;
   runner::TrialSpec spec;
@@ -225,6 +227,24 @@ TEST_F(ViewServerTest, CachedWorldIsReloadedWhenItsFileChanges) {
     EXPECT_NE(std::string(e.what()).find("does not match the trial"), std::string::npos)
         << e.what();
   }
+}
+
+// The page draws the goal circle of the trial's rules: vb's 10 m, or the original's 8 m sphere
+// around the marker cut at the ground (7.75 m) for a verti_bench record.
+TEST_F(ViewServerTest, TheTrialCarriesTheGoalCircleOfItsRules) {
+  const std::string vb_bundle =
+      TrialBundleJson((root_ / "results" / (stem_ + ".json")).string(), config_.bundle);
+  EXPECT_NE(vb_bundle.find("\"goal_radius_m\": 10,"), std::string::npos);   // task and trial
+  fs::create_directories(root_ / "original");
+  const std::string stem = WriteTrial(root_ / "original", kSource + "/tasks/env042.yaml",
+                                      runner::RuleSet::kVertiBench);
+  const std::string bundle =
+      TrialBundleJson((root_ / "original" / (stem + ".json")).string(), config_.bundle);
+  const size_t trial = bundle.find("\n\"trial\": ");
+  ASSERT_NE(trial, std::string::npos);
+  EXPECT_NE(bundle.find("\"goal_radius_m\": 10,"), std::string::npos);   // the task's (vb's)
+  EXPECT_NE(bundle.find("\"goal_radius_m\": 7.74596669241483", trial), std::string::npos)
+      << bundle.substr(trial, 200);
 }
 
 TEST_F(ViewServerTest, RecordedTaskSetPathIsFoundBesideTheResultsNotInTheCheckout) {

@@ -332,7 +332,8 @@ std::vector<cv::Point2d> ReadTrajectoryXY(const std::string& path) {
 }  // namespace
 
 void WriteTopDownPng(const terrain::TaskSpec& task, int pair, const std::string& traj_csv,
-                     const std::string& caption, const std::string& png_path) {
+                     const std::string& caption, double goal_radius_m,
+                     const std::string& png_path) {
   const int map_px = 640, band_px = 36;
   cv::Mat img(map_px + band_px, map_px, CV_8UC3, cv::Scalar(255, 255, 255));
   cv::Mat map = img(cv::Rect(0, band_px, map_px, map_px));
@@ -398,7 +399,7 @@ void WriteTopDownPng(const terrain::TaskSpec& task, int pair, const std::string&
     if (driven.size() > 1) cv::polylines(map, driven, false, cv::Scalar(0, 0, 230), 2, cv::LINE_AA);
     cv::circle(map, to_px(p.start_m.x(), p.start_m.y()), 6, cv::Scalar(0, 200, 0), cv::FILLED);
     cv::circle(map, to_px(p.goal_m.x(), p.goal_m.y()), 6, cv::Scalar(0, 0, 255), cv::FILLED);
-    const int goal_r = static_cast<int>(std::lround(10.0 * task.scale / m_per_px));
+    const int goal_r = static_cast<int>(std::lround(goal_radius_m / m_per_px));
     cv::circle(map, to_px(p.goal_m.x(), p.goal_m.y()), goal_r, cv::Scalar(0, 0, 255), 1,
                cv::LINE_AA);
     if (!driven.empty()) {

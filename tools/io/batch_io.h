@@ -56,8 +56,10 @@ std::vector<std::string> WriteReportPlots(const batch::Report& report, const std
 
 // Top-down picture of one trial: height shading, semantic class tint (deformable classes
 // hatched), rocks and trees, the planned path, the driven trajectory (from the trajectory CSV,
-// may be missing), start, goal and goal radius, and the end status as a caption.
+// may be missing), start, goal and the goal circle of goal_radius_m (the trial's rules:
+// runner::GoalCircleRadius_m), and the end status as a caption.
 void WriteTopDownPng(const terrain::TaskSpec& task, int pair, const std::string& traj_csv,
-                     const std::string& caption, const std::string& png_path);
+                     const std::string& caption, double goal_radius_m,
+                     const std::string& png_path);
 
 }  // namespace vb::io

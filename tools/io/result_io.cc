@@ -4,6 +4,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cinttypes>
 #include <cmath>
@@ -304,11 +305,18 @@ void WriteTrajectoryCsv(const runner::TrialResult& r, const std::string& path) {
 }
 
 void WriteSummaryCsv(const std::vector<runner::TrialResult>& results, const std::string& path) {
+  // A "rules" column only when a trial was decided by other rules than vb's, as in vb_batch's
+  // index: default summaries keep their format, and another rule set's rows are never unnamed.
+  const bool with_rules =
+      std::any_of(results.begin(), results.end(), [](const runner::TrialResult& r) {
+        return r.rule_set != runner::RuleSet::kVb;
+      });
   std::string text =
       "task,pair,seed,vehicle,system,status,traversal_time_s,sim_time_s,final_goal_distance_m,"
       "path_length_m,obstacle_contacts,mean_abs_roll_deg,var_abs_roll_deg,max_abs_roll_deg,"
       "mean_abs_pitch_deg,var_abs_pitch_deg,max_abs_pitch_deg,mean_throttle,mean_abs_steering,"
-      "wall_time_s,real_time_factor,message\n";
+      "wall_time_s,real_time_factor,message";
+  text += with_rules ? ",rules\n" : "\n";
   for (const runner::TrialResult& r : results) {
     const bool success = r.status == runner::TrialStatus::kSuccess;
     text += CsvField(r.task_name) + "," + std::to_string(r.spec.pair_index) + "," +
@@ -321,7 +329,9 @@ void WriteSummaryCsv(const std::vector<runner::TrialResult>& results, const std:
             Number(r.abs_pitch_deg.mean) + "," + Number(r.abs_pitch_deg.var) + "," +
             Number(r.abs_pitch_deg.max) + "," + Number(r.throttle.mean) + "," +
             Number(r.abs_steering.mean) + "," + Number(r.wall_time_s) + "," +
-            Number(r.real_time_factor) + "," + CsvField(r.message) + "\n";
+            Number(r.real_time_factor) + "," + CsvField(r.message) +
+            (with_rules ? "," + std::string(runner::RuleSetName(r.rule_set)) : std::string()) +
+            "\n";
   }
   WriteAtomically(path, text);
 }

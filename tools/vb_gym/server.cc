@@ -145,6 +145,7 @@ json ResultJson(const runner::TrialResult& r) {
   json j;
   j["status"] = std::string(runner::TrialStatusName(r.status));
   j["message"] = r.message;
+  j["rules"] = std::string(runner::RuleSetName(r.rule_set));   // which rules decided the status
   j["sim_time_s"] = r.sim_time_s;
   j["traversal_time_s"] = r.traversal_time_s;
   j["final_goal_distance_m"] = r.final_goal_distance_m;

@@ -14,6 +14,8 @@
 #include "io/yaml_strict.h"
 #include "vb/batch/aggregate.h"
 #include "vb/engine/error.h"
+#include "vb/engine/runner/episode.h"
+#include "vb/engine/runner/outcome_rules.h"
 
 namespace vb_report {
 
@@ -145,7 +147,12 @@ int Report(const std::vector<std::string>& args) {
       const std::string traj = (fs::path(dir) / "trials" / (stem + "_traj.csv")).string();
       const std::string problem = vb::io::TrajectoryProblem(traj, vb::io::ReadTrialJson(record));
       if (!problem.empty()) throw vb::InputError(record, 0, "--topdown", problem);
-      vb::io::WriteTopDownPng(it->second, r.pair, traj, caption, out + "/topdown/" + stem + ".png");
+      // The goal circle of the rules that decided the trial (a verti_bench record names them).
+      const vb::runner::RuleSet rules = vb::runner::ParseRuleSet("rules", r.rules, record);
+      const double goal_radius_m = vb::runner::GoalCircleRadius_m(
+          rules, it->second.scale, vb::runner::EpisodeRules().goal_radius_m);
+      vb::io::WriteTopDownPng(it->second, r.pair, traj, caption, goal_radius_m,
+                              out + "/topdown/" + stem + ".png");
       ++pictures;
     }
   }

@@ -68,7 +68,8 @@ outputs, per trial, in DIR:
   <task>_p<K>_s<seed>_<vehicle>_<system>.json       status, failure type, metrics, provenance
   <task>_p<K>_s<seed>_<vehicle>_<system>_traj.csv   per-step trajectory
 (with _perc-<preset> after <system> when --perception is not none)
-and DIR/summary.csv with one row per trial of this run. Files are written atomically.
+and DIR/summary.csv with one row per trial of this run (a last "rules" column under
+--rules verti_bench). Files are written atomically.
 
 exit codes:
   0  all trials ran (whatever their status: success, rollover, stuck, timeout, sim_error,

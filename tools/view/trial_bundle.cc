@@ -179,7 +179,12 @@ std::string TrialBundleJson(const std::string& result_path, const BundleOptions&
   const std::string traj_path = TrajectoryPathFor(result_path);
   std::string traj_text;
   const bool have_traj = ReadText(traj_path, &traj_text);
+  // The goal circle of the rules that decided the trial (the task's scene holds vb's).
+  const runner::RuleSet rules = runner::ParseRuleSet("rules", row.rules, result_path);
+  const double goal_radius_m =
+      runner::GoalCircleRadius_m(rules, task.scale, runner::EpisodeRules().goal_radius_m);
   std::string trial = "{\"result_file\": " + io::JsonString(result_path) +
+                      ", \"goal_radius_m\": " + io::JsonNumber(goal_radius_m) +
                       ", \"result_json\": " + JsonText(result_text) +
                       ", \"trajectory_file\": " + io::JsonString(traj_path) +
                       ", \"trajectory_csv\": ";

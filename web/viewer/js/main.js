@@ -129,7 +129,9 @@ export function buildWorld(view, bundle) {
   const terrain = buildTerrain(task);
   view.scene.add(terrain.mesh);
   view.scene.add(buildObstacles(task));
-  view.scene.add(buildRoute(task, pair, terrain.heightField));
+  // A trial's own goal circle (its rules' radius) where it has one, else the task's (vb's rules).
+  const goalRadius = bundle.trial?.goal_radius_m ?? task.goal_radius_m;
+  view.scene.add(buildRoute(task, pair, terrain.heightField, goalRadius));
   const vehicle = new VehicleModel(bundle.vehicle);
   view.scene.add(vehicle.group);
   hook.terrainTriangles = terrain.triangles;

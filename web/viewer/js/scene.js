@@ -136,7 +136,7 @@ function drapedLine(points, hf, lift, step, material) {
   return new THREE.Line(g, material);
 }
 
-export function buildRoute(task, pair, hf) {
+export function buildRoute(task, pair, hf, goalRadius = task.goal_radius_m) {
   const group = new THREE.Group();
   group.name = 'route';
   const step = Math.max(hf.dx, hf.dy) / 2;
@@ -144,7 +144,7 @@ export function buildRoute(task, pair, hf) {
   group.add(drapedLine(pair.path_m, hf, lift, step,
                        new THREE.LineBasicMaterial({ color: 0x2f6dff })));
   const ring = [];
-  const radius = task.goal_radius_m;
+  const radius = goalRadius;
   for (let i = 0; i <= 96; ++i) {
     const a = (i / 96) * 2 * Math.PI;
     ring.push([pair.goal_m[0] + radius * Math.cos(a), pair.goal_m[1] + radius * Math.sin(a)]);

@@ -15,6 +15,7 @@
 // the original's numbers exactly and a 1/10 world keeps the same geometry.
 #pragma once
 
+#include <cmath>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -56,6 +57,17 @@ inline RuleSet ParseRuleSet(const std::string& key, const std::string& text,
 constexpr double kVertiBenchGoalRadius_m = 8.0;     // 3-D, to the goal marker
 constexpr double kVertiBenchMarkerHeight_m = 2.0;   // goal marker above the terrain at the goal
 constexpr double kVertiBenchSlowSpeed_mps = 2.0;    // 0.01 m per 5 ms step
+
+// The radius of the circle around the goal that pictures draw (vb_report's top-down maps, the
+// viewer): vb_radius_m x scale under vb's rules (planar, exact); under verti_bench the section of
+// the 8 m sphere around the marker at the goal's ground height, sqrt(8² − 2²) x scale = 7.75 m x
+// scale (the reference point rides ~0.5-1 m above the ground, so on level ground the trial ends
+// up to ~0.1 m x scale further out; on slopes the section is not a circle).
+inline double GoalCircleRadius_m(RuleSet rules, double scale, double vb_radius_m) {
+  if (rules == RuleSet::kVb) return vb_radius_m * scale;
+  return std::sqrt(kVertiBenchGoalRadius_m * kVertiBenchGoalRadius_m -
+                   kVertiBenchMarkerHeight_m * kVertiBenchMarkerHeight_m) * scale;
+}
 
 // The success test of one trial.
 struct GoalRule {
