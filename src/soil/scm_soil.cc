@@ -405,8 +405,9 @@ struct ScmSoil::Impl {
   Node* Peek(int i, int j) const {
     if (i < i_min || i > i_max || j < j_min || j > j_max) return nullptr;
     const int li = i - i_min, lj = j - j_min;
-    const int32_t idx =
-        tile_index[static_cast<size_t>(lj >> kTileBits) * tiles_x + static_cast<size_t>(li >> kTileBits)];
+    const size_t t = static_cast<size_t>(lj >> kTileBits) * tiles_x +
+                     static_cast<size_t>(li >> kTileBits);
+    const int32_t idx = tile_index[t];
     if (idx < 0) return nullptr;
     return &tiles[static_cast<size_t>(idx)]->nodes[(lj & kTileMask) * kTileSize + (li & kTileMask)];
   }
