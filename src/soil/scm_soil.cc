@@ -116,27 +116,45 @@ int FloorToInt(double x) {
 }
 
 // Bottom of a flat belt segment from a to b (across it: half width hw along lat, which may be
-// tilted by the track's roll) on the vertical line through (x, y); false if the line misses it.
-// t: position along the segment's horizontal projection (0 at a, 1 at b), l: across it.
-bool BeltBottomAt(const Vec3& a, const Vec3& b, const Vec3& lat, double hw, double x, double y,
-                  double* z, double* t, double* l) {
-  const double sx = b.x() - a.x(), sy = b.y() - a.y();
-  const double len2 = sx * sx + sy * sy;
-  if (len2 < 1e-12) return false;
-  const double inv_len = 1.0 / std::sqrt(len2);
-  double lx = -sy * inv_len, ly = sx * inv_len;     // horizontal, across the segment
-  if (lx * lat.x() + ly * lat.y() < 0.0) {
-    lx = -lx;
-    ly = -ly;
+// tilted by the track's roll) on vertical lines: the segment's terms once (Init), then At per
+// line.
+struct BeltBottom {
+  double ax = 0.0, ay = 0.0, az = 0.0, dz = 0.0, sx = 0.0, sy = 0.0, len2 = 0.0;
+  double lx = 0.0, ly = 0.0, latz = 0.0, lat_h = 1.0, hw = 0.0;
+  bool valid = false;   // the segment's horizontal projection is not a point
+  void Init(const Vec3& a, const Vec3& b, const Vec3& lat, double half_w) {
+    ax = a.x();
+    ay = a.y();
+    az = a.z();
+    dz = b.z() - a.z();
+    sx = b.x() - a.x();
+    sy = b.y() - a.y();
+    len2 = sx * sx + sy * sy;
+    valid = !(len2 < 1e-12);
+    if (!valid) return;
+    const double inv_len = 1.0 / std::sqrt(len2);
+    lx = -sy * inv_len;     // horizontal, across the segment
+    ly = sx * inv_len;
+    if (lx * lat.x() + ly * lat.y() < 0.0) {
+      lx = -lx;
+      ly = -ly;
+    }
+    latz = lat.z();
+    lat_h = std::sqrt(std::max(1e-6, 1.0 - lat.z() * lat.z()));
+    hw = half_w;
   }
-  const double ux = x - a.x(), uy = y - a.y();
-  *t = (ux * sx + uy * sy) / len2;
-  *l = ux * lx + uy * ly;
-  if (std::abs(*l) > hw) return false;
-  const double lat_h = std::sqrt(std::max(1e-6, 1.0 - lat.z() * lat.z()));
-  *z = a.z() + *t * (b.z() - a.z()) + *l * lat.z() / lat_h;
-  return true;
-}
+  // The belt's bottom z on the vertical line through (x, y); false if the line misses it.
+  // t: position along the segment's horizontal projection (0 at a, 1 at b), l: across it.
+  bool At(double x, double y, double* z, double* t, double* l) const {
+    if (!valid) return false;
+    const double ux = x - ax, uy = y - ay;
+    *t = (ux * sx + uy * sy) / len2;
+    *l = ux * lx + uy * ly;
+    if (std::abs(*l) > hw) return false;
+    *z = az + *t * dz + *l * latz / lat_h;
+    return true;
+  }
+};
 
 }  // namespace
 
@@ -242,11 +260,15 @@ struct ScmSoil::Impl {
   // the rim they started at; `pending` carries nodes still changing at the end of a step over.
   struct Work {
     int i, j, ring;
-    Node* node;   // the node at (i, j): valid within a step only (rim, active, next); pending
-                  // (carried over a step and a Restore) is looked up again
+    Node* node;   // the node at (i, j) (tiles never move while they exist; Restore looks
+                  // pending's up again in the restored tiles)
   };
-  std::vector<Work> rim, active, next, pending;
+  std::vector<Work> rim, pending;
+  size_t n_rim = 0;   // this step's rim: rim[0, n_rim) (rim is a buffer written by index)
   int32_t queue_stamp = 0;
+  // The erosion passes' work lists (this pass's, the next pass's): buffers written by index
+  // (sized before a pass for the most it can add), their lengths in Erode's locals.
+  std::vector<Work> active_buf, next_buf;
 
   explicit Impl(const terrain::Terrain& t) : terrain(t) {}
 
@@ -350,7 +372,45 @@ struct ScmSoil::Impl {
   template <int kStride>
   TrackSoilOutput Track(const SoilConfig& config, const TrackSoilInput& tr, double dt);
   std::vector<char> hit_rep_in;   // belt_node_stride 2: the pressed node itself in contact
-  void DepositOnRim(const Patch& patch, size_t begin, double volume);
+  void DepositOnRim(const Patch& patch, size_t begin, size_t end, double volume);
+  // What one erosion pass's node visits share (Erode's locals, written back around ErodeVisit).
+  struct ErodePass {
+    double threshold;
+    int32_t cur_step, stamp;
+    int propagations;
+    double max_raise;
+    Work* out;      // the next pass's work list
+    size_t n_out;
+  };
+  void ErodeVisit(const Work& w, ErodePass& s);
+  // The rim nodes of contact ct in the order +i, -i, +j, -j (deformable, not in contact this
+  // step, not yet on the rim), written from rim[n_rim] on; their tiles allocated if missing.
+  // Returns the new count.
+  __attribute__((noinline)) size_t RimOf(const Contact& ct, int32_t step, Work* rim,
+                                         size_t n_rim) {
+    Node* nbs[4];
+    Neighbours(ct.node, ct.i, ct.j, true, nbs);
+    for (int e = 0; e < 4; ++e) {
+      Node* nb = nbs[e];
+      if (nb == nullptr || nb->slot < 0 || nb->contact_step == step || nb->mark_step == step) {
+        continue;
+      }
+      nb->mark_step = step;
+      rim[n_rim++] = {ct.i + kDi[e], ct.j + kDj[e], 0, nb};
+    }
+    return n_rim;
+  }
+  // The node at (i, j) if it exists (inside the world, its tile allocated), else nullptr: At's
+  // look-up without allocation, inline (no call in the erosion's fast path).
+  Node* Peek(int i, int j) const {
+    if (i < i_min || i > i_max || j < j_min || j > j_max) return nullptr;
+    const int li = i - i_min, lj = j - j_min;
+    const size_t t = static_cast<size_t>(lj >> kTileBits) * tiles_x +
+                     static_cast<size_t>(li >> kTileBits);
+    const int32_t idx = tile_index[t];
+    if (idx < 0) return nullptr;
+    return &tiles[static_cast<size_t>(idx)]->nodes[(lj & kTileMask) * kTileSize + (li & kTileMask)];
+  }
   std::vector<double> room;
   std::vector<char> full_scratch;
 };
@@ -601,13 +661,13 @@ WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
   return out;
 }
 
-// Spreads `volume` (a height summed over cells) evenly over the rim nodes rim[begin..], but no
+// Spreads `volume` (a height summed over cells) evenly over the rim nodes rim[begin, end), but no
 // rim node is raised into the wheel above it (as Chrono caps the raise at the node's hit level):
 // water-filling, nodes under the tread take at most up to the tread, the rest share the
 // remainder. Only if every rim node is under the tread and full is the cap ignored (volume is
 // conserved first).
-void ScmSoil::Impl::DepositOnRim(const Patch& patch, size_t begin, double volume) {
-  const size_t n = rim.size() - begin;
+void ScmSoil::Impl::DepositOnRim(const Patch& patch, size_t begin, size_t end, double volume) {
+  const size_t n = end - begin;
   if (n == 0) {
     stats.lost_volume_m3 += volume * dx * dx;
     return;
@@ -621,6 +681,8 @@ void ScmSoil::Impl::DepositOnRim(const Patch& patch, size_t begin, double volume
       patch.half_width +
       std::abs(ax.z()) * std::sqrt(patch.radius * patch.radius + patch.half_width * patch.half_width) +
       1e-6;
+  BeltBottom belt;
+  if (patch.belt) belt.Init(patch.center, patch.belt_end, patch.axis, patch.half_width);
   for (size_t k = 0; k < n; ++k) {
     const Work& w = rim[begin + k];
     if (!patch.belt &&
@@ -628,10 +690,8 @@ void ScmSoil::Impl::DepositOnRim(const Patch& patch, size_t begin, double volume
       continue;
     }
     double z = 0.0, lat = 0.0, t = 0.0;
-    const bool under = patch.belt ? BeltBottomAt(patch.center, patch.belt_end, patch.axis,
-                                                 patch.half_width, w.i * dx, w.j * dx, &z, &t,
-                                                 &lat) &&
-                                        t >= 0.0 && t <= 1.0
+    const bool under = patch.belt ? belt.At(w.i * dx, w.j * dx, &z, &t, &lat) && t >= 0.0 &&
+                                        t <= 1.0
                                   : WheelBottomAt(patch.center, patch.axis, patch.radius,
                                                   patch.half_width, w.i * dx, w.j * dx, &z, &lat);
     if (under) room[k] = std::max(0.0, z - Level(*w.node));
@@ -780,6 +840,16 @@ TrackSoilOutput ScmSoil::Impl::Track(const SoilConfig& config, const TrackSoilIn
     // it, so no node they skip could be a contact.
     const double z_slope = sx / len2 * dz + lx * tilt;
     const double zy_slope = sy / len2 * dz + ly * tilt;   // the belt height's slope along y
+    // A block's other nodes q (kMi, kMj) relative to the pressed one: across the belt
+    // (ml = l + ml_i[q] + ml_j[q]) and in the belt's height (mz = z + mz_i[q] + mz_j[q]), the
+    // terms of those sums once per segment.
+    double ml_i[3], ml_j[3], mz_i[3], mz_j[3];
+    for (int q = 0; q < 3; ++q) {
+      ml_i[q] = kMi[q] * lx * dx;
+      ml_j[q] = kMj[q] * ly * dx;
+      mz_i[q] = kMi[q] * dx * z_slope;
+      mz_j[q] = kMj[q] * dx * zy_slope;
+    }
     m.hits.clear();
     m.hit_rep_in.clear();
     for (int j = align_up(j_lo, m.j_min); j <= j_hi; j += stride) {
@@ -792,7 +862,7 @@ TrackSoilOutput ScmSoil::Impl::Track(const SoilConfig& config, const TrackSoilIn
           align_up(std::max(i_lo, CeilToInt((a.x() + lo) / m.dx - 1e-9)), i_min);
       const int i1 = std::min(i_hi, FloorToInt((a.x() + hi) / m.dx + 1e-9));
       if (i0 > i1) continue;
-      // BeltBottomAt inlined along the row (t, l and the height are linear in x)
+      // BeltBottom::At inlined along the row (t, l and the height are linear in x)
       row.t_row = uy * sy / len2;
       row.l_row = uy * ly;
       const double z_row = az + row.t_row * dz + row.l_row * tilt;
@@ -873,9 +943,9 @@ TrackSoilOutput ScmSoil::Impl::Track(const SoilConfig& config, const TrackSoilIn
               bool any = false;
               for (int q = 0; q < 3 && !any; ++q) {
                 const Node& mt = node[kMateOffset[q]];
-                const double ml = l + kMi[q] * lx * dx + kMj[q] * ly * dx;
+                const double ml = l + ml_i[q] + ml_j[q];
                 if (mt.slot < 0 || !(std::abs(ml) < half_w + 0.5 * dx)) continue;
-                const double mz = hit_z + kMi[q] * dx * z_slope + kMj[q] * dx * zy_slope;
+                const double mz = hit_z + mz_i[q] + mz_j[q];
                 any = !AboveLevel(mt, mz);
               }
               if (!any) continue;
@@ -965,10 +1035,10 @@ TrackSoilOutput ScmSoil::Impl::Track(const SoilConfig& config, const TrackSoilIn
         const double level_rep = Level(nd);
         for (int q = 0; q < 3; ++q) {
           Node& mt = (&nd)[kMateOffset[q]];
-          const double ml = h.lat + kMi[q] * lx * dx + kMj[q] * ly * dx;
+          const double ml = h.lat + ml_i[q] + ml_j[q];
           if (mt.slot < 0 || !(std::abs(ml) < half_w + 0.5 * dx)) continue;
           const double target = level_rep + (mt.base_m - nd.base_m);
-          const double mz = h.p.z() + kMi[q] * dx * z_slope + kMj[q] * dx * zy_slope;
+          const double mz = h.p.z() + mz_i[q] + mz_j[q];
           if (rep_in && !(Level(mt) > target)) {   // at or below the pressed node: follows it
             mt.contact_step = m.step;
             m.contacts.push_back({h.i + kMi[q], h.j + kMj[q], 0.0, &mt});
@@ -1023,29 +1093,56 @@ void ScmSoil::EndStep(double /*dt*/) {
   Impl& m = *impl_;
   const BulldozingParams& bp = config_.bulldozing;
   if (bp.enabled) {
-    m.rim.clear();
+    // at most four rim nodes per contact: the rim written by index, no call on the way
+    if (m.rim.size() < 4 * m.contacts.size()) m.rim.resize(4 * m.contacts.size());
+    Impl::Work* const rim = m.rim.data();
+    size_t n_rim = 0;
     const int32_t step = m.step;   // a local: the node writes below cannot change it
+    const int gi_min = m.i_min, gj_min = m.j_min, gi_max = m.i_max, gj_max = m.j_max;
     for (const Impl::Patch& patch : m.patches) {
       // Rim: untouched deformable 4-neighbours of this patch's contact nodes, in contact order.
       double volume = 0.0;  // displaced height summed over nodes (all cells have equal area)
-      const size_t rim_begin = m.rim.size();
+      const size_t rim_begin = n_rim;
+      const Impl::Contact* const contacts = m.contacts.data();
       for (size_t k = patch.begin; k < patch.end; ++k) {
-        const Impl::Contact& ct = m.contacts[k];
+        const Impl::Contact& ct = contacts[k];
         volume += ct.flow_m;
-        Node* nbs[4];
-        m.Neighbours(ct.node, ct.i, ct.j, true, nbs);
-        for (int e = 0; e < 4; ++e) {
-          Node* nb = nbs[e];
-          if (nb == nullptr || nb->slot < 0 || nb->contact_step == step ||
-              nb->mark_step == step) {
+        Node* const n = ct.node;
+        const int ci = ct.i, cj = ct.j;
+        const int li = (ci - gi_min) & kTileMask, lj = (cj - gj_min) & kTileMask;
+        // the 4-neighbours as Neighbours finds them; if one does not exist (outside the world
+        // or its tile not allocated), RimOf, which allocates the missing tiles in Neighbours'
+        // order (not inline: the loop has no call on the way)
+        Node *nb0, *nb1, *nb2, *nb3;
+        if (li != 0 && li != kTileMask && lj != 0 && lj != kTileMask && ci < gi_max &&
+            cj < gj_max) {
+          nb0 = n + 1;
+          nb1 = n - 1;
+          nb2 = n + kTileSize;
+          nb3 = n - kTileSize;
+        } else {
+          nb0 = li != kTileMask && ci < gi_max ? n + 1 : m.Peek(ci + 1, cj);
+          nb1 = li != 0 ? n - 1 : m.Peek(ci - 1, cj);
+          nb2 = lj != kTileMask && cj < gj_max ? n + kTileSize : m.Peek(ci, cj + 1);
+          nb3 = lj != 0 ? n - kTileSize : m.Peek(ci, cj - 1);
+          if (nb0 == nullptr || nb1 == nullptr || nb2 == nullptr || nb3 == nullptr) {
+            n_rim = m.RimOf(ct, step, rim, n_rim);
             continue;
           }
-          nb->mark_step = step;
-          m.rim.push_back({ct.i + kDi[e], ct.j + kDj[e], 0, nb});
         }
+        auto add = [&](int e, Node* nb) {
+          if (nb->slot < 0 || nb->contact_step == step || nb->mark_step == step) return;
+          nb->mark_step = step;
+          rim[n_rim++] = {ci + kDi[e], cj + kDj[e], 0, nb};
+        };
+        add(0, nb0);
+        add(1, nb1);
+        add(2, nb2);
+        add(3, nb3);
       }
-      if (volume > 0.0) m.DepositOnRim(patch, rim_begin, bp.flow_factor * volume);
+      if (volume > 0.0) m.DepositOnRim(patch, rim_begin, n_rim, bp.flow_factor * volume);
     }
+    m.n_rim = n_rim;
     m.Erode(bp);
   }
   m.contacts.clear();
@@ -1062,80 +1159,184 @@ void ScmSoil::EndStep(double /*dt*/) {
 // took soil is checked again in the next pass, up to `erosion_propagations` rings from where
 // it started. Same domain bound and settings, but only nodes that can change are visited.
 void ScmSoil::Impl::Erode(const BulldozingParams& bp) {
-  const double threshold = dx * std::tan(bp.erosion_angle_rad);
-  active.clear();
+  ErodePass s;
+  s.threshold = dx * std::tan(bp.erosion_angle_rad);
   // Locals for what the node writes below cannot change (the compiler cannot know that).
-  const int32_t cur_step = step;
-  const int propagations = bp.erosion_propagations;
-  auto enqueue = [](std::vector<Work>* list, int32_t stamp, Node* n, int i, int j, int ring) {
-    if (n->queue_stamp == stamp) return;
-    n->queue_stamp = stamp;
-    list->push_back({i, j, ring, n});
-  };
+  s.cur_step = step;
+  s.propagations = bp.erosion_propagations;
+  // The first pass's list: the rim, then the nodes carried over (their node pointers hold between
+  // steps: tiles never move, and Restore looks them up again), each once.
   ++queue_stamp;
-  for (const Work& w : rim) enqueue(&active, queue_stamp, w.node, w.i, w.j, w.ring);
-  for (const Work& w : pending) {
-    Node* n = At(w.i, w.j, false);
-    if (n != nullptr) enqueue(&active, queue_stamp, n, w.i, w.j, w.ring);
-  }
+  if (active_buf.size() < n_rim + pending.size()) active_buf.resize(n_rim + pending.size());
+  size_t n_active = 0;
+  auto first = [this, &n_active](const Work& w) {
+    if (w.node->queue_stamp == queue_stamp) return;
+    w.node->queue_stamp = queue_stamp;
+    active_buf[n_active++] = w;
+  };
+  for (size_t k = 0; k < n_rim; ++k) first(rim[k]);
+  for (const Work& w : pending) first(w);
   pending.clear();
   // A local for the maximum raise: the node writes below (doubles and int32 stamps) could change
   // the member as far as the compiler knows, which would reload and store it at every raise.
-  double max_raise = max_raise_m;   // written back after the passes (max is exact in any order)
-  // Raise(nd, dh) for dh > 0 with the local maximum (a lowering is one add: see Raise).
-  auto raise_up = [this, &max_raise](Node* nd, double dh) {
+  s.max_raise = max_raise_m;   // written back after the passes (max is exact in any order)
+  const int gi_min = i_min, gj_min = j_min, gi_max = i_max, gj_max = j_max;
+  for (int pass = 0; pass < bp.erosion_iterations && n_active > 0; ++pass) {
+    const int32_t stamp = s.stamp = ++queue_stamp;
+    // a visit adds at most its node and its four neighbours, each once per pass
+    if (next_buf.size() < 5 * n_active) next_buf.resize(5 * n_active);
+    Work* const out = next_buf.data();
+    size_t n_out = 0;
+    stats.eroded_node_visits += static_cast<long>(n_active);
+    // The visits with all four neighbours existing (nearly all) here, with no call on the way
+    // (so that the doubles stay in registers); the others through ErodeVisit, which can read
+    // the terrain and allocate a tile. Both make the same moves in the same order.
+    const double threshold = s.threshold;
+    const int32_t cur_step = s.cur_step;
+    const int propagations = s.propagations;
+    double max_raise = s.max_raise;
+    std::unique_ptr<Tile>* tile_ptrs = tiles.data();
+    const Work* const work = active_buf.data();
+    for (size_t k = 0; k < n_active; ++k) {
+      const Work& w = work[k];
+      Node* const n = w.node;
+      if (n->slot < 0 || n->contact_step == cur_step) continue;
+      const int wi = w.i, wj = w.j, ring = w.ring;
+      const int li = (wi - gi_min) & kTileMask, lj = (wj - gj_min) & kTileMask;
+      // the 4-neighbours in the order +i, -i, +j, -j (kDi, kDj), as Neighbours
+      Node *nb0, *nb1, *nb2, *nb3;
+      if (li != 0 && li != kTileMask && lj != 0 && lj != kTileMask && wi < gi_max &&
+          wj < gj_max) {
+        nb0 = n + 1;
+        nb1 = n - 1;
+        nb2 = n + kTileSize;
+        nb3 = n - kTileSize;
+      } else {
+        nb0 = li != kTileMask && wi < gi_max ? n + 1 : Peek(wi + 1, wj);
+        nb1 = li != 0 ? n - 1 : Peek(wi - 1, wj);
+        nb2 = lj != kTileMask && wj < gj_max ? n + kTileSize : Peek(wi, wj + 1);
+        nb3 = lj != 0 ? n - kTileSize : Peek(wi, wj - 1);
+        if (nb0 == nullptr || nb1 == nullptr || nb2 == nullptr || nb3 == nullptr) {
+          s.max_raise = max_raise;
+          s.out = out;
+          s.n_out = n_out;
+          ErodeVisit(w, s);
+          max_raise = s.max_raise;
+          n_out = s.n_out;
+          tile_ptrs = tiles.data();
+          continue;
+        }
+      }
+      // n's level0 and sinkage in registers: n's own writes below are these, and no neighbour
+      // is n. level_n = Level(*n) throughout.
+      double level0_n = n->level0_m;
+      const double sink_n = n->sink_m;
+      double level_n = level0_n - sink_n;
+      bool n_queued = n->queue_stamp == stamp;
+      // One move between n and neighbour nb (direction e): the arithmetic and order of
+      // ErodeVisit's.
+      auto edge = [&](int e, Node* nb) {
+        const double dy = level_n - (nb->level0_m - nb->sink_m);
+        if (std::abs(dy) <= threshold) return;
+        if (nb->slot < 0 || nb->contact_step == cur_step) return;
+        const double q = 0.5 * (std::abs(dy) - threshold) / 4.0;
+        const int nj = wj + kDj[e];
+        Node* up;
+        int up_j;
+        if (dy > 0.0) {
+          level0_n += -q;
+          n->level0_m = level0_n;
+          nb->level0_m += q;
+          up = nb;
+          up_j = nj;
+        } else {
+          level0_n += q;
+          n->level0_m = level0_n;
+          nb->level0_m += -q;
+          up = n;
+          up_j = wj;
+        }
+        const double up_level0 = up->level0_m;
+        max_raise = std::max(max_raise, up_level0 - up->base_m);
+        double& top = tile_ptrs[up->tile]->row_top_m[(up_j - gj_min) & kTileMask];
+        top = std::max(top, up_level0);
+        level_n = level0_n - sink_n;
+        if (q > kErosionSettled_m) {
+          if (!n_queued) {
+            n_queued = true;
+            n->queue_stamp = stamp;
+            out[n_out++] = {wi, wj, ring, n};
+          }
+          if (ring < propagations && nb->queue_stamp != stamp) {
+            nb->queue_stamp = stamp;
+            out[n_out++] = {wi + kDi[e], nj, ring + 1, nb};
+          }
+        }
+      };
+      edge(0, nb0);
+      edge(1, nb1);
+      edge(2, nb2);
+      edge(3, nb3);
+    }
+    s.max_raise = max_raise;
+    active_buf.swap(next_buf);
+    n_active = n_out;
+  }
+  max_raise_m = s.max_raise;
+  pending.assign(active_buf.data(), active_buf.data() + n_active);  // still moving: next step
+}
+
+// One erosion visit of node w (any neighbours: outside the world, in a tile not allocated): the
+// general form of Erode's fast path, same moves in the same order. A neighbour that does not
+// exist has the terrain's level; if soil flows to or from it, its tile is allocated.
+__attribute__((noinline)) void ScmSoil::Impl::ErodeVisit(const Work& w, ErodePass& s) {
+  Node* n = w.node;
+  const int32_t stamp = s.stamp;
+  auto enqueue = [&s, stamp](Node* nd, int i, int j, int ring) {
+    if (nd->queue_stamp == stamp) return;
+    nd->queue_stamp = stamp;
+    s.out[s.n_out++] = {i, j, ring, nd};
+  };
+  auto raise_up = [this, &s](Node* nd, double dh) {
     nd->level0_m += dh;
-    max_raise = std::max(max_raise, nd->level0_m - nd->base_m);
+    s.max_raise = std::max(s.max_raise, nd->level0_m - nd->base_m);
     Tile& t = *tiles[static_cast<size_t>(nd->tile)];
     double& top = t.row_top_m[(nd - t.nodes) >> kTileBits];
     top = std::max(top, nd->level0_m);
   };
-  for (int pass = 0; pass < bp.erosion_iterations && !active.empty(); ++pass) {
-    const int32_t stamp = ++queue_stamp;
-    next.clear();
-    stats.eroded_node_visits += static_cast<long>(active.size());
-    for (const Work& w : active) {
-      Node* n = w.node;
-      if (n->slot < 0 || n->contact_step == cur_step) continue;
-      double level_n = Level(*n);
-      // one look-up for the neighbour's level and, if it moves, the node itself (its tile is
-      // allocated only then: most neighbours are within the threshold). The four neighbours lie
-      // in four different tiles when outside n's, so allocating one leaves the others' nullptr
-      // true.
-      const int wi = w.i, wj = w.j;
-      Node* nbs[4];
-      Neighbours(n, wi, wj, false, nbs);
-#pragma GCC unroll 4
-      for (int e = 0; e < 4; ++e) {
-        Node* nb = nbs[e];
-        const double level_nb = nb != nullptr
-                                    ? Level(*nb)
-                                    : terrain.Height((wi + kDi[e]) * dx, (wj + kDj[e]) * dx);
-        const double dy = level_n - level_nb;
-        if (std::abs(dy) <= threshold) continue;
-        const int ni = wi + kDi[e], nj = wj + kDj[e];
-        if (nb == nullptr) nb = At(ni, nj, true);
-        if (nb == nullptr || nb->slot < 0 || nb->contact_step == cur_step) continue;
-        const double q = 0.5 * (std::abs(dy) - threshold) / 4.0;
-        // from the higher node to the lower one: Raise(n, -moved), Raise(nb, moved)
-        if (dy > 0.0) {
-          n->level0_m += -q;
-          raise_up(nb, q);
-        } else {
-          raise_up(n, q);
-          nb->level0_m += -q;
-        }
-        level_n = Level(*n);
-        if (q > kErosionSettled_m) {
-          enqueue(&next, stamp, n, wi, wj, w.ring);
-          if (w.ring < propagations) enqueue(&next, stamp, nb, ni, nj, w.ring + 1);
-        }
-      }
+  double level_n = Level(*n);
+  // one look-up for the neighbour's level and, if it moves, the node itself (its tile is
+  // allocated only then: most neighbours are within the threshold). The four neighbours lie
+  // in four different tiles when outside n's, so allocating one leaves the others' nullptr
+  // true.
+  const int wi = w.i, wj = w.j;
+  Node* nbs[4];
+  Neighbours(n, wi, wj, false, nbs);
+  for (int e = 0; e < 4; ++e) {
+    Node* nb = nbs[e];
+    const double level_nb = nb != nullptr
+                                ? Level(*nb)
+                                : terrain.Height((wi + kDi[e]) * dx, (wj + kDj[e]) * dx);
+    const double dy = level_n - level_nb;
+    if (std::abs(dy) <= s.threshold) continue;
+    const int ni = wi + kDi[e], nj = wj + kDj[e];
+    if (nb == nullptr) nb = At(ni, nj, true);
+    if (nb == nullptr || nb->slot < 0 || nb->contact_step == s.cur_step) continue;
+    const double q = 0.5 * (std::abs(dy) - s.threshold) / 4.0;
+    // from the higher node to the lower one: Raise(n, -moved), Raise(nb, moved)
+    if (dy > 0.0) {
+      n->level0_m += -q;
+      raise_up(nb, q);
+    } else {
+      raise_up(n, q);
+      nb->level0_m += -q;
     }
-    active.swap(next);
+    level_n = Level(*n);
+    if (q > kErosionSettled_m) {
+      enqueue(n, wi, wj, w.ring);
+      if (w.ring < s.propagations) enqueue(nb, ni, nj, w.ring + 1);
+    }
   }
-  max_raise_m = max_raise;
-  pending.swap(active);  // still moving: continue next step
 }
 
 double ScmSoil::SurfaceHeight(double x_m, double y_m) const {
@@ -1224,7 +1425,13 @@ void ScmSoil::Restore(const SoilSnapshot& snapshot) {
   m.step = d.step;
   m.stats = d.stats;
   m.max_raise_m = d.max_raise_m;
-  m.pending = d.pending;
+  // the carried-over work's nodes in this soil's tiles (Erode uses the pointers)
+  m.pending.clear();
+  for (const ScmSoil::Impl::Work& w : d.pending) {
+    Impl::Work r = w;
+    r.node = m.At(w.i, w.j, false);
+    if (r.node != nullptr) m.pending.push_back(r);
+  }
   m.queue_stamp = d.queue_stamp;
   m.contacts.clear();
   m.patches.clear();
