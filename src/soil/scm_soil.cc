@@ -69,7 +69,7 @@ static_assert(sizeof(Node) == 80, "the tile index lives in Node's padding");
 // when the node (or its block) was not in contact the step before, moved by the velocity's part
 // tangent to the surface normal nw, kept in the tangent plane and capped at jmax (where the
 // mobilised share is tabulated). Returns its length. The one shear law of wheels and belts.
-double AdvanceShear(bool restart, const Vec3& v, const Vec3& nw, double dt, double jmax,
+[[gnu::always_inline]] inline double AdvanceShear(bool restart, const Vec3& v, const Vec3& nw, double dt, double jmax,
                     Vec3* shear) {
   if (restart) shear->setZero();
   const double vn = v.dot(nw);
@@ -256,6 +256,9 @@ struct ScmSoil::Impl {
     double cover;    // share of the cell under the tread (edge columns: < 1)
   };
   std::vector<Hit> hits;
+  // WheelContact's hits: a buffer written by index (sized before the scan for the most it can
+  // keep, so the scan's loop holds no call), the count in WheelContact's locals.
+  std::vector<Hit> wheel_hits;
   // Erosion work lists: nodes to check in this pass / next pass, with their ring distance from
   // the rim they started at; `pending` carries nodes still changing at the end of a step over.
   struct Work {
@@ -507,7 +510,13 @@ WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
   const WheelHeightBound bound(c, a, r, hw_ext);
   const double lon_step = m.dx * fwd.x();
   const double lat_reach = hw_ext + std::abs(a.z()) * std::sqrt(r * r + hw_ext * hw_ext) + 1e-6;
-  m.hits.clear();
+  // The scan keeps at most one hit per node of the box [i_lo, i_hi] x [j_lo, j_hi].
+  if (i_hi >= i_lo && j_hi >= j_lo) {
+    const size_t box = static_cast<size_t>(i_hi - i_lo + 1) * static_cast<size_t>(j_hi - j_lo + 1);
+    if (m.wheel_hits.size() < box) m.wheel_hits.resize(box);
+  }
+  Impl::Hit* const hits = m.wheel_hits.data();
+  size_t n_hits = 0;
   for (int j = j_lo; j <= j_hi; ++j) {
     // The row tile by tile: one look-up per tile (the first node in it under the tread, as the
     // node-by-node look-up allocated it), the others by pointer offset.
@@ -554,8 +563,20 @@ WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
         if (n->slot < 0) return;
         if (AboveLevel(*n, hit_z)) return;
         const double ux = i * m.dx - c.x(), uy = j * m.dx - c.y();
-        m.hits.push_back(
-            {n, i, j, Vec3(i * m.dx, j * m.dx, hit_z), lat, ux * fwd.x() + uy * fwd.y(), cover});
+        hits[n_hits++] =
+            {n, i, j, Vec3(i * m.dx, j * m.dx, hit_z), lat, ux * fwd.x() + uy * fwd.y(), cover};
+      };
+      // consider() for a node of an allocated tile (n its deformable node): the same tests
+      // without the look-up, so the loop over such nodes holds no call.
+      auto consider_in_tile = [&](int i, Node* n) {
+        double hit_z = 0.0, lat = 0.0;
+        if (!WheelBottomAt(c, a, r, hw_ext, i * m.dx, j * m.dx, &hit_z, &lat)) return;
+        const double cover = std::min(1.0, (half_w - std::abs(lat)) / m.dx + 0.5);
+        if (!(cover > 0.0)) return;
+        if (AboveLevel(*n, hit_z)) return;
+        const double ux = i * m.dx - c.x(), uy = j * m.dx - c.y();
+        hits[n_hits++] =
+            {n, i, j, Vec3(i * m.dx, j * m.dx, hit_z), lat, ux * fwd.x() + uy * fwd.y(), cover};
       };
       // In an allocated tile (nothing to allocate) a node is first tested against the bound on
       // the cylinder's height over it (lon walked along the row), and only the nodes it leaves
@@ -574,7 +595,7 @@ WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
         for (; i <= chunk_end; ++i, ++nd, lon += lon_step) {
           if (nd->slot < 0) continue;   // rigid (or beyond i_max): never kept
           if (bound.Clears(Level(*nd), lon)) continue;
-          consider(i, nd);
+          consider_in_tile(i, nd);
         }
       } else {
         for (; i <= chunk_end; ++i) consider(i, nullptr);
@@ -582,12 +603,14 @@ WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
       i = chunk_end + 1;
     }
   }
-  if (m.hits.empty()) return out;
+  if (n_hits == 0) return out;
+  const Impl::Hit* const hits_end = hits + n_hits;
 
   // Patch width for the Bekker law: the smaller side of the contact rectangle (Bekker's b),
   // never wider than the wheel. (Chrono uses 2A/L of the patch's convex hull, about half that.)
   double lat_lo = 1e300, lat_hi = -1e300, lon_lo = 1e300, lon_hi = -1e300;
-  for (const Impl::Hit& h : m.hits) {
+  for (const Impl::Hit* hp = hits; hp != hits_end; ++hp) {
+    const Impl::Hit& h = *hp;
     lat_lo = std::min(lat_lo, h.lat);
     lat_hi = std::max(lat_hi, h.lat);
     lon_lo = std::min(lon_lo, h.lon);
@@ -600,7 +623,8 @@ WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
   const double mass = wheel.mass_kg > 0.0 ? wheel.mass_kg : config_.default_wheel_mass_kg;
   const double cell = m.dx * m.dx;
   double k_total = 0.0, c_total = 0.0;
-  for (const Impl::Hit& h : m.hits) {
+  for (const Impl::Hit* hp = hits; hp != hits_end; ++hp) {
+    const Impl::Hit& h = *hp;
     const SoilParams& s = m.soils[static_cast<size_t>(h.node->slot)];
     k_total += s.elastic_stiffness_papm * cell * h.cover;
     c_total += s.damping_paspm * cell * h.cover;
@@ -614,7 +638,12 @@ WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
   Vec3 force = Vec3::Zero(), torque = Vec3::Zero();
   double sinkage = 0.0;
   const size_t begin = m.contacts.size();
-  for (const Impl::Hit& h : m.hits) {
+  // The contacts written by index (no call in the loop).
+  m.contacts.resize(begin + n_hits);
+  Impl::Contact* const contacts = m.contacts.data() + begin;
+  const int32_t prev_step = m.step - 1;
+  for (size_t k = 0; k < n_hits; ++k) {
+    const Impl::Hit& h = hits[k];
     Node& n = *h.node;
     const SoilParams& s = m.soils[static_cast<size_t>(n.slot)];
     const double ca = n.cos_slope;
@@ -637,7 +666,7 @@ WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
     const double vn_terrain = v.dot(under.normal_W);
     const double sigma_damp = std::max(-sigma, -s.damping_paspm * c_scale * vn_terrain);
     // Shear: the shear displacement restarts when a node enters contact afresh.
-    const double j_len = AdvanceShear(n.contact_step < m.step - 1, v, nw, dt,
+    const double j_len = AdvanceShear(n.contact_step < prev_step, v, nw, dt,
                                       m.shear_cap_m[static_cast<size_t>(n.slot)], &n.shear_m);
     const Vec3 f =
         m.NodeForce(n, sigma, sigma_damp, area, cell, h.cover, nw, under.normal_W, j_len);
@@ -645,14 +674,14 @@ WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
     torque += w.cross(f);
     n.contact_step = m.step;
     const double node_sinkage = ca * (n.base_m - h.p.z());
-    if (!centre_on_soil && (m.contacts.size() == begin || node_sinkage > sinkage)) {
+    if (!centre_on_soil && (k == 0 || node_sinkage > sinkage)) {
       out.surface = m.terrain.SurfaceAt(h.p.x(), h.p.y());  // the soil's class, not the centre's
     }
     sinkage = std::max(sinkage, node_sinkage);
-    m.contacts.push_back({h.i, h.j, flow, h.node});
+    contacts[k] = {h.i, h.j, flow, h.node};
   }
   m.patches.push_back({begin, m.contacts.size(), c, a, r, half_w});
-  m.stats.contact_nodes += static_cast<long>(m.hits.size());
+  m.stats.contact_nodes += static_cast<long>(n_hits);
 
   out.force_W = force;
   out.torque_W = torque;
