@@ -569,6 +569,12 @@ WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
       // consider() for a node of an allocated tile (n its deformable node): the same tests
       // without the look-up, so the loop over such nodes holds no call.
       auto consider_in_tile = [&](int i, Node* n) {
+        // A node whose horizontal axial offset exceeds lat_reach is one WheelBottomAt rejects
+        // (see lat_reach): rejected before the intersection (the row's margin nodes).
+        {
+          const double ux = i * m.dx - c.x(), uy = j * m.dx - c.y();
+          if (std::abs(ux * a.x() + uy * a.y()) > lat_reach) return;
+        }
         double hit_z = 0.0, lat = 0.0;
         if (!WheelBottomAt(c, a, r, hw_ext, i * m.dx, j * m.dx, &hit_z, &lat)) return;
         const double cover = std::min(1.0, (half_w - std::abs(lat)) / m.dx + 0.5);
