@@ -517,6 +517,23 @@ WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
   }
   Impl::Hit* const hits = m.wheel_hits.data();
   size_t n_hits = 0;
+  // Kept hits go to `hits` in scan order, which is also the order of the sums over them: the
+  // contact rectangle's bounds (for the patch width) and the stiffness and damping totals (for
+  // the stabilisation) are taken as each hit is kept, term by term as a loop over the hits
+  // would.
+  const double cell = m.dx * m.dx;
+  double lat_lo = 1e300, lat_hi = -1e300, lon_lo = 1e300, lon_hi = -1e300;
+  double k_total = 0.0, c_total = 0.0;
+  auto keep = [&](const Impl::Hit& h) {
+    hits[n_hits++] = h;
+    lat_lo = std::min(lat_lo, h.lat);
+    lat_hi = std::max(lat_hi, h.lat);
+    lon_lo = std::min(lon_lo, h.lon);
+    lon_hi = std::max(lon_hi, h.lon);
+    const SoilParams& s = m.soils[static_cast<size_t>(h.node->slot)];
+    k_total += s.elastic_stiffness_papm * cell * h.cover;
+    c_total += s.damping_paspm * cell * h.cover;
+  };
   for (int j = j_lo; j <= j_hi; ++j) {
     // The row tile by tile: one look-up per tile (the first node in it under the tread, as the
     // node-by-node look-up allocated it), the others by pointer offset.
@@ -563,8 +580,7 @@ WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
         if (n->slot < 0) return;
         if (AboveLevel(*n, hit_z)) return;
         const double ux = i * m.dx - c.x(), uy = j * m.dx - c.y();
-        hits[n_hits++] =
-            {n, i, j, Vec3(i * m.dx, j * m.dx, hit_z), lat, ux * fwd.x() + uy * fwd.y(), cover};
+        keep({n, i, j, Vec3(i * m.dx, j * m.dx, hit_z), lat, ux * fwd.x() + uy * fwd.y(), cover});
       };
       // consider() for a node of an allocated tile (n its deformable node): the same tests
       // without the look-up, so the loop over such nodes holds no call.
@@ -581,8 +597,7 @@ WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
         if (!(cover > 0.0)) return;
         if (AboveLevel(*n, hit_z)) return;
         const double ux = i * m.dx - c.x(), uy = j * m.dx - c.y();
-        hits[n_hits++] =
-            {n, i, j, Vec3(i * m.dx, j * m.dx, hit_z), lat, ux * fwd.x() + uy * fwd.y(), cover};
+        keep({n, i, j, Vec3(i * m.dx, j * m.dx, hit_z), lat, ux * fwd.x() + uy * fwd.y(), cover});
       };
       // In an allocated tile (nothing to allocate) a node is first tested against the bound on
       // the cylinder's height over it (lon walked along the row), and only the nodes it leaves
@@ -610,31 +625,16 @@ WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
     }
   }
   if (n_hits == 0) return out;
-  const Impl::Hit* const hits_end = hits + n_hits;
 
   // Patch width for the Bekker law: the smaller side of the contact rectangle (Bekker's b),
   // never wider than the wheel. (Chrono uses 2A/L of the patch's convex hull, about half that.)
-  double lat_lo = 1e300, lat_hi = -1e300, lon_lo = 1e300, lon_hi = -1e300;
-  for (const Impl::Hit* hp = hits; hp != hits_end; ++hp) {
-    const Impl::Hit& h = *hp;
-    lat_lo = std::min(lat_lo, h.lat);
-    lat_hi = std::max(lat_hi, h.lat);
-    lon_lo = std::min(lon_lo, h.lon);
-    lon_hi = std::max(lon_hi, h.lon);
-  }
+  // (lat_lo, lat_hi, lon_lo, lon_hi: taken in the scan, keep)
   const double b = std::max(
       m.dx, std::min({lat_hi - lat_lo + m.dx, 2.0 * half_w, lon_hi - lon_lo + m.dx}));
 
   // Stabilisation: effective stiffness and damping scales for this wheel and step.
   const double mass = wheel.mass_kg > 0.0 ? wheel.mass_kg : config_.default_wheel_mass_kg;
-  const double cell = m.dx * m.dx;
-  double k_total = 0.0, c_total = 0.0;
-  for (const Impl::Hit* hp = hits; hp != hits_end; ++hp) {
-    const Impl::Hit& h = *hp;
-    const SoilParams& s = m.soils[static_cast<size_t>(h.node->slot)];
-    k_total += s.elastic_stiffness_papm * cell * h.cover;
-    c_total += s.damping_paspm * cell * h.cover;
-  }
+  // (k_total, c_total: summed in the scan, keep)
   const double k_scale = std::min(1.0, kStiffnessLimit * mass / (k_total * dt * dt));
   const double c_scale = 1.0 / (1.0 + c_total * dt / mass);  // implicit-Euler damper
 
