@@ -550,6 +550,20 @@ WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
       row_lo = std::max(row_lo, FloorToInt(x0 / m.dx) - 1);
       row_hi = std::min(row_hi, CeilToInt(x1 / m.dx) + 1);
     }
+    // The row's ends whose horizontal axial offset ua exceeds lat_reach are nodes WheelBottomAt
+    // rejects (above), before any look-up: left out. ua is monotonic along the row (each
+    // operation of it is), so the nodes left are those with |ua| <= lat_reach.
+    {
+      const double uy = j * m.dx - c.y();
+      while (row_lo <= row_hi &&
+             std::abs((row_lo * m.dx - c.x()) * a.x() + uy * a.y()) > lat_reach) {
+        ++row_lo;
+      }
+      while (row_hi >= row_lo &&
+             std::abs((row_hi * m.dx - c.x()) * a.x() + uy * a.y()) > lat_reach) {
+        --row_hi;
+      }
+    }
     const Impl::GridRow row = m.Row(j);
     const double lon_row = (j * m.dx - c.y()) * fwd.y() - c.x() * fwd.x();  // lon at i = 0
     int i = row_lo;
@@ -585,12 +599,6 @@ WheelSoilOutput ScmSoil::WheelContact(const WheelSoilInput& wheel, double dt) {
       // consider() for a node of an allocated tile (n its deformable node): the same tests
       // without the look-up, so the loop over such nodes holds no call.
       auto consider_in_tile = [&](int i, Node* n) {
-        // A node whose horizontal axial offset exceeds lat_reach is one WheelBottomAt rejects
-        // (see lat_reach): rejected before the intersection (the row's margin nodes).
-        {
-          const double ux = i * m.dx - c.x(), uy = j * m.dx - c.y();
-          if (std::abs(ux * a.x() + uy * a.y()) > lat_reach) return;
-        }
         double hit_z = 0.0, lat = 0.0;
         if (!WheelBottomAt(c, a, r, hw_ext, i * m.dx, j * m.dx, &hit_z, &lat)) return;
         const double cover = std::min(1.0, (half_w - std::abs(lat)) / m.dx + 0.5);
