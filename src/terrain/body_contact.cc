@@ -128,9 +128,11 @@ void VertexContactsAndReduce(const engine::ConvexShape& body, const Terrain& gro
   const double west = -0.5 * ground.size_x_m(), north = 0.5 * ground.size_y_m();
   const double dx = ground.spacing_x_m(), dy = ground.spacing_y_m();
   const int ci0 = std::max(0, static_cast<int>(CeilExact((body.aabb_min.x() - west) / dx)));
-  const int ci1 = std::min(g.cols - 1, static_cast<int>(FloorExact((body.aabb_max.x() - west) / dx)));
+  const int ci1 =
+      std::min(g.cols - 1, static_cast<int>(FloorExact((body.aabb_max.x() - west) / dx)));
   const int ri0 = std::max(0, static_cast<int>(CeilExact((north - body.aabb_max.y()) / dy)));
-  const int ri1 = std::min(g.rows - 1, static_cast<int>(FloorExact((north - body.aabb_min.y()) / dy)));
+  const int ri1 =
+      std::min(g.rows - 1, static_cast<int>(FloorExact((north - body.aabb_min.y()) / dy)));
   int hint = -1;
   for (int r = ri0; r <= ri1; ++r) {
     for (int c = ci0; c <= ci1; ++c) {

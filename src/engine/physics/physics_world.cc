@@ -43,11 +43,13 @@ btDefaultCollisionConstructionInfo SmallPools() {
 // neither: skipped too. The dynamics (forces, solver, integration) are Bullet's, unchanged, so
 // the results are bit-identical.
 //
-// The integration is btMultiBodyDynamicsWorld::integrateMultiBodyTransforms without its last
-// part, the update of every link collider's world transform: nothing reads those transforms
-// during a step (the solver takes the links' own cached transforms and the contacts' world
-// points), so they keep the pose of the last state the adapter set (AddMultiBody, SetState,
-// SetJointPosition update them) and nothing reads them.
+// The integration advances each multibody's positions (joint angles and base pose) by its
+// velocities, and no more: Bullet's own also writes every link collider's world transform, which
+// nothing reads during a step (the solver takes the links' cached transforms and the contacts'
+// world points); the colliders keep the pose of the last state the adapter set (AddMultiBody,
+// SetState, SetJointPosition update them). Bullet's other branches do not occur in vb: its
+// multibodies cannot sleep (created with canSleep = false, so the world keeps their colliders
+// active) and vb never asks for the RK4 integration that leaves a position change behind.
 class VbMultiBodyWorld : public btMultiBodyDynamicsWorld {
  public:
   using btMultiBodyDynamicsWorld::btMultiBodyDynamicsWorld;
@@ -56,24 +58,8 @@ class VbMultiBodyWorld : public btMultiBodyDynamicsWorld {
   void integrateTransforms(btScalar timeStep) override {
     btDiscreteDynamicsWorld::integrateTransforms(timeStep);  // rigid bodies (vb has none)
     for (int i = 0; i < m_multiBodies.size(); ++i) {
-      btMultiBody* bod = m_multiBodies[i];
-      bool sleeping = bod->getBaseCollider() &&
-                      bod->getBaseCollider()->getActivationState() == ISLAND_SLEEPING;
-      for (int b = 0; b < bod->getNumLinks(); ++b) {
-        if (bod->getLink(b).m_collider &&
-            bod->getLink(b).m_collider->getActivationState() == ISLAND_SLEEPING)
-          sleeping = true;
-      }
-      if (sleeping) {
-        bod->clearVelocities();
-      } else if (!bod->isPosUpdated()) {
-        bod->stepPositionsMultiDof(timeStep);
-      } else {  // Bullet's RK4 integration (vb does not use it) left the position change here
-        btScalar* delta_q = const_cast<btScalar*>(bod->getVelocityVector()) + 6 +
-                            bod->getNumDofs() + bod->getNumDofs() * bod->getNumDofs();
-        bod->stepPositionsMultiDof(1, 0, delta_q);
-        bod->setPosUpdated(false);
-      }
+      VB_DEMAND(!m_multiBodies[i]->isPosUpdated());
+      m_multiBodies[i]->stepPositionsMultiDof(timeStep);
     }
   }
 };

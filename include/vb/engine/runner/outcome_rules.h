@@ -59,10 +59,10 @@ constexpr double kVertiBenchMarkerHeight_m = 2.0;   // goal marker above the ter
 constexpr double kVertiBenchSlowSpeed_mps = 2.0;    // 0.01 m per 5 ms step
 
 // The radius of the circle around the goal that pictures draw (vb_report's top-down maps, the
-// viewer): vb_radius_m x scale under vb's rules (planar, exact); under verti_bench the section of
-// the 8 m sphere around the marker at the goal's ground height, sqrt(8² − 2²) x scale = 7.75 m x
-// scale (the reference point rides ~0.5-1 m above the ground, so on level ground the trial ends
-// up to ~0.1 m x scale further out; on slopes the section is not a circle).
+// viewer): vb_radius_m x scale under vb's rules (planar, exact); under verti_bench the section
+// of the 8 m sphere around the marker at the goal's ground height, sqrt(8² − 2²) x scale =
+// 7.75 m x scale (the reference point rides ~0.5-1 m above the ground, so on level ground the
+// trial ends up to ~0.1 m x scale further out; on slopes the section is not a circle).
 inline double GoalCircleRadius_m(RuleSet rules, double scale, double vb_radius_m) {
   if (rules == RuleSet::kVb) return vb_radius_m * scale;
   return std::sqrt(kVertiBenchGoalRadius_m * kVertiBenchGoalRadius_m -
