@@ -69,8 +69,8 @@ static_assert(sizeof(Node) == 80, "the tile index lives in Node's padding");
 // when the node (or its block) was not in contact the step before, moved by the velocity's part
 // tangent to the surface normal nw, kept in the tangent plane and capped at jmax (where the
 // mobilised share is tabulated). Returns its length. The one shear law of wheels and belts.
-[[gnu::always_inline]] inline double AdvanceShear(bool restart, const Vec3& v, const Vec3& nw, double dt, double jmax,
-                    Vec3* shear) {
+[[gnu::always_inline]] inline double AdvanceShear(bool restart, const Vec3& v, const Vec3& nw,
+                                                  double dt, double jmax, Vec3* shear) {
   if (restart) shear->setZero();
   const double vn = v.dot(nw);
   const Vec3 vt = v - vn * nw;
