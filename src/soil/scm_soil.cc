@@ -414,6 +414,33 @@ struct ScmSoil::Impl {
     if (idx < 0) return nullptr;
     return &tiles[static_cast<size_t>(idx)]->nodes[(lj & kTileMask) * kTileSize + (li & kTileMask)];
   }
+  // The grid bounds as the hot loops keep them, in locals (a node write could change the members
+  // as far as the compiler knows).
+  struct GridBounds {
+    int i_min, j_min, i_max, j_max;
+  };
+  GridBounds Bounds() const { return {i_min, j_min, i_max, j_max}; }
+  // The 4-neighbours of node n at (i, j), in Neighbours' order (+i, -i, +j, -j: kDi, kDj), for the
+  // rim and erosion loops: no call on the way when n lies inside its tile (nearly always), so the
+  // callers' doubles stay in registers; at a tile's border they come from Peek. False if one of
+  // them does not exist (outside the world, or its tile not allocated): the caller then takes its
+  // own path, which may allocate.
+  [[gnu::always_inline]] bool FourNeighbours(Node* n, int i, int j, const GridBounds& b,
+                                             Node* nb[4]) const {
+    const int li = (i - b.i_min) & kTileMask, lj = (j - b.j_min) & kTileMask;
+    if (li != 0 && li != kTileMask && lj != 0 && lj != kTileMask && i < b.i_max && j < b.j_max) {
+      nb[0] = n + 1;
+      nb[1] = n - 1;
+      nb[2] = n + kTileSize;
+      nb[3] = n - kTileSize;
+      return true;
+    }
+    nb[0] = li != kTileMask && i < b.i_max ? n + 1 : Peek(i + 1, j);
+    nb[1] = li != 0 ? n - 1 : Peek(i - 1, j);
+    nb[2] = lj != kTileMask && j < b.j_max ? n + kTileSize : Peek(i, j + 1);
+    nb[3] = lj != 0 ? n - kTileSize : Peek(i, j - 1);
+    return nb[0] != nullptr && nb[1] != nullptr && nb[2] != nullptr && nb[3] != nullptr;
+  }
   std::vector<double> room;
   std::vector<char> full_scratch;
 };
@@ -1141,7 +1168,7 @@ void ScmSoil::EndStep(double /*dt*/) {
     Impl::Work* const rim = m.rim.data();
     size_t n_rim = 0;
     const int32_t step = m.step;   // a local: the node writes below cannot change it
-    const int gi_min = m.i_min, gj_min = m.j_min, gi_max = m.i_max, gj_max = m.j_max;
+    const Impl::GridBounds bounds = m.Bounds();
     for (const Impl::Patch& patch : m.patches) {
       // Rim: untouched deformable 4-neighbours of this patch's contact nodes, in contact order.
       double volume = 0.0;  // displaced height summed over nodes (all cells have equal area)
@@ -1152,36 +1179,23 @@ void ScmSoil::EndStep(double /*dt*/) {
         volume += ct.flow_m;
         Node* const n = ct.node;
         const int ci = ct.i, cj = ct.j;
-        const int li = (ci - gi_min) & kTileMask, lj = (cj - gj_min) & kTileMask;
-        // the 4-neighbours as Neighbours finds them; if one does not exist (outside the world
-        // or its tile not allocated), RimOf, which allocates the missing tiles in Neighbours'
-        // order (not inline: the loop has no call on the way)
-        Node *nb0, *nb1, *nb2, *nb3;
-        if (li != 0 && li != kTileMask && lj != 0 && lj != kTileMask && ci < gi_max &&
-            cj < gj_max) {
-          nb0 = n + 1;
-          nb1 = n - 1;
-          nb2 = n + kTileSize;
-          nb3 = n - kTileSize;
-        } else {
-          nb0 = li != kTileMask && ci < gi_max ? n + 1 : m.Peek(ci + 1, cj);
-          nb1 = li != 0 ? n - 1 : m.Peek(ci - 1, cj);
-          nb2 = lj != kTileMask && cj < gj_max ? n + kTileSize : m.Peek(ci, cj + 1);
-          nb3 = lj != 0 ? n - kTileSize : m.Peek(ci, cj - 1);
-          if (nb0 == nullptr || nb1 == nullptr || nb2 == nullptr || nb3 == nullptr) {
-            n_rim = m.RimOf(ct, step, rim, n_rim);
-            continue;
-          }
+        // if a neighbour does not exist (outside the world or its tile not allocated), RimOf,
+        // which allocates the missing tiles in Neighbours' order (not inline: the loop has no
+        // call on the way)
+        Node* nb[4];
+        if (!m.FourNeighbours(n, ci, cj, bounds, nb)) {
+          n_rim = m.RimOf(ct, step, rim, n_rim);
+          continue;
         }
         auto add = [&](int e, Node* nb) {
           if (nb->slot < 0 || nb->contact_step == step || nb->mark_step == step) return;
           nb->mark_step = step;
           rim[n_rim++] = {ci + kDi[e], cj + kDj[e], 0, nb};
         };
-        add(0, nb0);
-        add(1, nb1);
-        add(2, nb2);
-        add(3, nb3);
+        add(0, nb[0]);
+        add(1, nb[1]);
+        add(2, nb[2]);
+        add(3, nb[3]);
       }
       if (volume > 0.0) m.DepositOnRim(patch, rim_begin, n_rim, bp.flow_factor * volume);
     }
@@ -1223,7 +1237,7 @@ void ScmSoil::Impl::Erode(const BulldozingParams& bp) {
   // A local for the maximum raise: the node writes below (doubles and int32 stamps) could change
   // the member as far as the compiler knows, which would reload and store it at every raise.
   s.max_raise = max_raise_m;   // written back after the passes (max is exact in any order)
-  const int gi_min = i_min, gj_min = j_min, gi_max = i_max, gj_max = j_max;
+  const GridBounds bounds = Bounds();
   for (int pass = 0; pass < bp.erosion_iterations && n_active > 0; ++pass) {
     const int32_t stamp = s.stamp = ++queue_stamp;
     // a visit adds at most its node and its four neighbours, each once per pass
@@ -1245,30 +1259,16 @@ void ScmSoil::Impl::Erode(const BulldozingParams& bp) {
       Node* const n = w.node;
       if (n->slot < 0 || n->contact_step == cur_step) continue;
       const int wi = w.i, wj = w.j, ring = w.ring;
-      const int li = (wi - gi_min) & kTileMask, lj = (wj - gj_min) & kTileMask;
-      // the 4-neighbours in the order +i, -i, +j, -j (kDi, kDj), as Neighbours
-      Node *nb0, *nb1, *nb2, *nb3;
-      if (li != 0 && li != kTileMask && lj != 0 && lj != kTileMask && wi < gi_max &&
-          wj < gj_max) {
-        nb0 = n + 1;
-        nb1 = n - 1;
-        nb2 = n + kTileSize;
-        nb3 = n - kTileSize;
-      } else {
-        nb0 = li != kTileMask && wi < gi_max ? n + 1 : Peek(wi + 1, wj);
-        nb1 = li != 0 ? n - 1 : Peek(wi - 1, wj);
-        nb2 = lj != kTileMask && wj < gj_max ? n + kTileSize : Peek(wi, wj + 1);
-        nb3 = lj != 0 ? n - kTileSize : Peek(wi, wj - 1);
-        if (nb0 == nullptr || nb1 == nullptr || nb2 == nullptr || nb3 == nullptr) {
-          s.max_raise = max_raise;
-          s.out = out;
-          s.n_out = n_out;
-          ErodeVisit(w, s);
-          max_raise = s.max_raise;
-          n_out = s.n_out;
-          tile_ptrs = tiles.data();
-          continue;
-        }
+      Node* nb[4];
+      if (!FourNeighbours(n, wi, wj, bounds, nb)) {
+        s.max_raise = max_raise;
+        s.out = out;
+        s.n_out = n_out;
+        ErodeVisit(w, s);
+        max_raise = s.max_raise;
+        n_out = s.n_out;
+        tile_ptrs = tiles.data();
+        continue;
       }
       // n's level0 and sinkage in registers: n's own writes below are these, and no neighbour
       // is n. level_n = Level(*n) throughout.
@@ -1301,7 +1301,7 @@ void ScmSoil::Impl::Erode(const BulldozingParams& bp) {
         }
         const double up_level0 = up->level0_m;
         max_raise = std::max(max_raise, up_level0 - up->base_m);
-        double& top = tile_ptrs[up->tile]->row_top_m[(up_j - gj_min) & kTileMask];
+        double& top = tile_ptrs[up->tile]->row_top_m[(up_j - bounds.j_min) & kTileMask];
         top = std::max(top, up_level0);
         level_n = level0_n - sink_n;
         if (q > kErosionSettled_m) {
@@ -1316,10 +1316,10 @@ void ScmSoil::Impl::Erode(const BulldozingParams& bp) {
           }
         }
       };
-      edge(0, nb0);
-      edge(1, nb1);
-      edge(2, nb2);
-      edge(3, nb3);
+      edge(0, nb[0]);
+      edge(1, nb[1]);
+      edge(2, nb[2]);
+      edge(3, nb[3]);
     }
     s.max_raise = max_raise;
     active_buf.swap(next_buf);
