@@ -7,15 +7,13 @@
 #include <cstdint>
 #include <limits>
 
+#include "support/lcg.h"
+
 namespace vb {
 namespace {
 
 TEST(ExactRoundTest, SameValuesAsTheLibrary) {
-  std::uint64_t state = 99;
-  auto uniform = [&state]() {  // deterministic LCG in [0, 1)
-    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-    return static_cast<double>(state >> 11) / 9007199254740992.0;
-  };
+  test::UniformLcg uniform(99);
   const double special[] = {0.0, -0.0, 0.5, -0.5, 1.0, -1.0, 1.0 - 1e-16, -1.0 + 1e-16,
                             std::nextafter(2.0, 0.0), std::nextafter(-2.0, 0.0), 4503599627370495.5,
                             -4503599627370495.5, 4503599627370496.0, 1e300, -1e300,

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <cstring>
 
+#include "support/lcg.h"
 #include "support/worlds.h"
 #include "vb/engine/convex_shape.h"
 #include "vb/engine/error.h"
@@ -211,31 +212,37 @@ TEST(BodyContactTest, ReductionKeepsTheDeepestAndSpreadsTheRest) {
   EXPECT_EQ(out[2].point_W.x(), 0.0);  // then the farthest from both
 }
 
+// A 32 m world of random vertex heights in [0, 0.6) m, for the property tests below.
+Terrain RoughGround(test::UniformLcg& uniform) {
+  TaskSpec task = test::PlaneTask(32.0);
+  for (double& h : task.heights.heights_m) h = 0.6 * uniform();
+  return Terrain(task);
+}
+
+// A random pose over the middle of that world: x, y in [-8, 8) m, z in [z0, z0 + dz) m, tilted by
+// up to 0.3 rad about x and y, any heading.
+Pose RandomPose(test::UniformLcg& uniform, double z0, double dz) {
+  Pose pose;
+  pose.position = Vec3(-8.0 + 16.0 * uniform(), -8.0 + 16.0 * uniform(), z0 + dz * uniform());
+  pose.rotation = Quat(Eigen::AngleAxisd(0.6 * (uniform() - 0.5), Vec3::UnitX())) *
+                  Quat(Eigen::AngleAxisd(0.6 * (uniform() - 0.5), Vec3::UnitY())) *
+                  Quat(Eigen::AngleAxisd(6.3 * uniform(), Vec3::UnitZ()));
+  return pose;
+}
+
 // The quick reject used before GroundContacts (GroundBeyondLowestFace) must never hide a contact:
 // over a rough ground (random vertex heights) and random tilted box poses near it, whenever it
 // says "beyond", GroundContacts finds nothing; and it does pass the common case of a box tilted
 // with the slope under it, which the AABB test (MaxGroundHeightUnder) cannot.
 TEST(BodyContactTest, LowestFaceRejectNeverHidesAContact) {
-  TaskSpec task = test::PlaneTask(32.0);
-  std::uint64_t state = 12345;
-  auto uniform = [&state]() {  // deterministic LCG in [0, 1)
-    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-    return static_cast<double>(state >> 11) / 9007199254740992.0;
-  };
-  for (double& h : task.heights.heights_m) h = 0.6 * uniform();
-  const Terrain ground(task);
+  test::UniformLcg uniform(12345);
+  const Terrain ground = RoughGround(uniform);
   ContactScratch scratch;
   std::vector<BodyContact> out;
   int rejected = 0, touching = 0;
   for (int k = 0; k < 4000; ++k) {
-    const Vec3 centre(-8.0 + 16.0 * uniform(), -8.0 + 16.0 * uniform(), 0.2 + 1.2 * uniform());
-    const Quat q = Quat(Eigen::AngleAxisd(0.6 * (uniform() - 0.5), Vec3::UnitX())) *
-                   Quat(Eigen::AngleAxisd(0.6 * (uniform() - 0.5), Vec3::UnitY())) *
-                   Quat(Eigen::AngleAxisd(6.3 * uniform(), Vec3::UnitZ()));
+    const Pose pose = RandomPose(uniform, 0.2, 1.2);
     const engine::ConvexShape local = Box(Vec3::Zero(), Vec3(1.2, 0.6, 0.2));
-    Pose pose;
-    pose.position = centre;
-    pose.rotation = q;
     const engine::ConvexShape box = local.Transformed(pose);
     out.clear();
     GroundContacts(box, ground, 0.8, 64, &scratch, &out);
@@ -270,14 +277,8 @@ TEST(BodyContactTest, LowestFaceRejectNeverHidesAContact) {
 // GroundContacts with the samples posed on the way (only those below the highest ground vertex)
 // must find exactly what posing them all first finds: the same contacts, bit for bit.
 TEST(BodyContactTest, LazilyPosedSamplesGiveBitIdenticalContacts) {
-  TaskSpec task = test::PlaneTask(32.0);
-  std::uint64_t state = 777;
-  auto uniform = [&state]() {  // deterministic LCG in [0, 1)
-    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-    return static_cast<double>(state >> 11) / 9007199254740992.0;
-  };
-  for (double& h : task.heights.heights_m) h = 0.6 * uniform();
-  const Terrain ground(task);
+  test::UniformLcg uniform(777);
+  const Terrain ground = RoughGround(uniform);
   const engine::ConvexShape local =
       engine::MakeConvexHull({Vec3(2.1, 0.75, 0.0), Vec3(2.1, -0.75, 0.0), Vec3(2.3, 0.75, 0.44),
                               Vec3(2.3, -0.75, 0.44), Vec3(2.3, 0.75, 0.55), Vec3(2.3, -0.75, 0.55),
@@ -289,11 +290,7 @@ TEST(BodyContactTest, LazilyPosedSamplesGiveBitIdenticalContacts) {
   engine::ConvexShape posed, posed_without_samples;
   int touching = 0;
   for (int k = 0; k < 3000; ++k) {
-    Pose pose;
-    pose.position = Vec3(-8.0 + 16.0 * uniform(), -8.0 + 16.0 * uniform(), 0.1 + 0.8 * uniform());
-    pose.rotation = Quat(Eigen::AngleAxisd(0.6 * (uniform() - 0.5), Vec3::UnitX())) *
-                    Quat(Eigen::AngleAxisd(0.6 * (uniform() - 0.5), Vec3::UnitY())) *
-                    Quat(Eigen::AngleAxisd(6.3 * uniform(), Vec3::UnitZ()));
+    const Pose pose = RandomPose(uniform, 0.1, 0.8);
     local.TransformInto(pose, &posed);
     local.TransformInto(pose, &posed_without_samples, /*with_samples=*/false);
     const double max_h = MaxGroundHeightUnder(posed.aabb_min, posed.aabb_max, ground);
