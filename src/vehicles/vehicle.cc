@@ -421,6 +421,11 @@ void Vehicle::Synchronize(double dt) {
       world_->BaseLinearVelocity(body_).dot(chassis.rotation * Vec3::UnitX());
   ComputeWheelTorques(params_, inputs_.throttle, in_->wheel_speeds, in_->driven,
                       ground_speed_mps, dt, &in_->powertrain, &in_->wheel_torques);
+  if (!params_.driveline.engine_block_reaction) {
+    // the original's unreacted propeller-shaft torque (vehicle_params.h DrivelineParams)
+    world_->ApplyBaseTorque(body_,
+                            chassis.rotation * Vec3(in_->powertrain.driveshaft_torque_nm, 0, 0));
+  }
 
   for (size_t i = 0; i < n; ++i) {
     Internals::Corner& c = in_->corners[i];
