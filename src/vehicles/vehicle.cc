@@ -675,9 +675,11 @@ void Vehicle::UpdateState() {
     ws.suspension_travel_m = world_->JointPosition(body_, c.carrier_link);
     const Pose wheel = world_->LinkPose(body_, c.wheel_link);
     ws.center_W = wheel.position;
-    // heading: the wheel plane's horizontal direction (spin axis y crossed with up)
+    // heading: the wheel's rolling direction, the spin axis crossed with the chassis' up (on a
+    // slope the ground's direction, not the horizontal one: that would read 1 - cos(slope) of
+    // slip on a wheel that rolls, 0.13 at 30 deg)
     const Vec3 axis_W = wheel.rotation * Vec3::UnitY();
-    Vec3 heading_W = axis_W.cross(Vec3::UnitZ());
+    Vec3 heading_W = axis_W.cross(com.rotation * Vec3::UnitZ());
     const double heading_norm = heading_W.norm();
     if (heading_norm > 1e-6) {
       heading_W /= heading_norm;

@@ -175,5 +175,41 @@ TEST(VehicleDrive, BrakedVehicleHoldsOnSlopes) {
   }
 }
 
+// The slip read-out measures the wheel centre's speed along its rolling direction on the ground,
+// not along the horizontal: on a slope the horizontal read-out gives a wheel that rolls without
+// slip 1 - cos(slope) (0.060 at 20 deg). The HMMWV rolls back down a 20 deg grade, no throttle,
+// no brake: its wheels roll, the read-out is near 0 on 20 deg as on 5 deg (the wheels' own
+// spin-up and the tire's rolling resistance leave a little).
+TEST(VehicleDrive, RollingWheelsReadNoSlipOnSlopes) {
+  double mean_abs_slip[2] = {0.0, 0.0};
+  const double slopes_deg[2] = {5.0, 20.0};
+  for (int case_i = 0; case_i < 2; ++case_i) {
+    const double sx = std::tan(slopes_deg[case_i] * kPi / 180.0);
+    Pose pose;
+    pose.position = Vec3(0, 0, 0.467 + 0.3);
+    pose.rotation = Quat(Eigen::AngleAxisd(-std::atan(sx), Vec3::UnitY()));
+    Sim sim(test::PlaneTask(128.0, sx, 0.0), pose);
+    vehicles::DriverInputs brake;
+    brake.braking = 1.0;
+    sim.Run(2.0, brake);  // settle held
+    vehicles::DriverInputs coast;
+    sim.Run(1.0, coast);
+    int samples = 0;
+    for (int k = 0; k < 20; ++k) {
+      sim.Run(0.05, coast);
+      for (const vehicles::WheelState& w : sim.vehicle->state().wheels) {
+        mean_abs_slip[case_i] += std::abs(w.longitudinal_slip);
+        ++samples;
+      }
+    }
+    mean_abs_slip[case_i] /= samples;
+    std::printf("%.0f deg grade, rolling back at %.2f m/s: mean |slip| %.4f\n", slopes_deg[case_i],
+                -sim.vehicle->state().forward_speed_mps, mean_abs_slip[case_i]);
+    ASSERT_LT(sim.vehicle->state().forward_speed_mps, -1.0);  // it does roll back
+  }
+  EXPECT_LT(mean_abs_slip[0], 0.02);
+  EXPECT_LT(mean_abs_slip[1], 0.02);  // the horizontal read-out: >= 0.060
+}
+
 }  // namespace
 }  // namespace vb

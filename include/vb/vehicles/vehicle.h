@@ -32,7 +32,8 @@ struct WheelState {
   double sinkage_m = 0.0;          // rigid ground: 0 (the soil solver will fill it)
   double spin_radps = 0.0;
   // (omega r - v) / max(|omega r|, |v|, 0.1 m/s), v = wheel-centre speed along the wheel's
-  // heading: + when driving (the tread moves faster than the wheel travels).
+  // rolling direction (spin axis x chassis up): + when driving (the tread moves faster than the
+  // wheel travels).
   double longitudinal_slip = 0.0;
   double suspension_travel_m = 0.0;
   Vec3 center_W = Vec3::Zero();
