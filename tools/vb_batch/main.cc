@@ -16,6 +16,8 @@
 #include <ctime>
 #include <filesystem>
 #include <map>
+#include <memory>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -177,6 +179,26 @@ RunCounts RunTrials(const Options& o, const vb::batch::MatrixSpec& spec, const P
   size_t next = 0;
   RunCounts c;
   const pid_t parent = ::getpid();
+  // The static worlds (BuildWorld) of the task of todo[next], one per vehicle and perception,
+  // each built once and inherited by its trials' workers; dropped when the trials move on to the
+  // next task (the matrix is task-major). Built while the workers run (after the slots are
+  // filled), so that building costs no slot time.
+  std::map<std::pair<std::string, std::string>, std::unique_ptr<vb::runner::Episode>> worlds;
+  size_t worlds_task = spec.tasks.size();
+  auto prepare_world = [&]() -> vb::runner::Episode* {
+    if (next >= todo.size()) {
+      worlds.clear();
+      return nullptr;
+    }
+    const vb::batch::TrialKey& k = todo[next];
+    if (k.task_index != worlds_task) {
+      worlds.clear();
+      worlds_task = k.task_index;
+    }
+    auto [it, inserted] = worlds.try_emplace({k.vehicle, k.perception});
+    if (inserted) it->second = BuildWorld(o, parsed, k);
+    return it->second.get();
+  };
   while (next < todo.size() || !running.empty()) {
     // After a failed write (disk full) starting more trials only burns CPU: let the running ones
     // end, then stop; the trials without a record run on resume.
@@ -187,6 +209,7 @@ RunCounts RunTrials(const Options& o, const vb::batch::MatrixSpec& spec, const P
       break;
     }
     while (next < todo.size() && static_cast<int>(running.size()) < jobs) {
+      vb::runner::Episode* const world = prepare_world();
       const vb::batch::TrialKey& k = todo[next++];
       const std::string stem = vb::batch::TrialStem(spec, k);
       std::fflush(stdout);
@@ -199,10 +222,12 @@ RunCounts RunTrials(const Options& o, const vb::batch::MatrixSpec& spec, const P
         ::signal(SIGTERM, SIG_DFL);
         ::sigprocmask(SIG_SETMASK, &old_mask, nullptr);
         ::close(lock_fd);
-        RunWorker(o, spec.tasks[k.task_index], parsed, k, (trials_dir / stem).string());
+        RunWorker(o, spec.tasks[k.task_index], parsed, world, k,
+                  (trials_dir / stem).string());
       }
       running[pid] = Running{k, stem, Clock::now()};
     }
+    if (c.io_failed == 0 && g_stop_signal == 0) prepare_world();   // the next world, meanwhile
     int status = 0;
     const pid_t pid = ::waitpid(-1, &status, WNOHANG);
     if (pid == 0) {   // nothing finished: enforce the wall-clock limit, redraw, poll again
