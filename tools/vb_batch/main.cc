@@ -153,6 +153,9 @@ class ProgressBar {
 struct RunCounts {
   size_t finished = 0, successes = 0, crashed = 0;
   size_t io_failed = 0;   // trials left without a record because a file could not be written
+  // The records the workers wrote, as read back when they ended (by matrix index): the index
+  // takes them from here instead of reading the files a second time.
+  std::map<size_t, vb::batch::TrialRow> records;
 };
 
 // Runs `todo` with up to `jobs` forked workers at a time until done or a stop signal; a worker
@@ -273,7 +276,9 @@ RunCounts RunTrials(const Options& o, const vb::batch::MatrixSpec& spec, const P
     bool have_record = WIFEXITED(status) && WEXITSTATUS(status) == 0 && fs::exists(json);
     if (have_record) {
       try {
-        result = vb::io::ReadTrialJson(json).status;
+        vb::batch::TrialRow row = vb::io::ReadTrialJson(json);
+        result = row.status;
+        c.records[r.key.matrix_index] = std::move(row);
       } catch (const vb::InputError&) {
         have_record = false;
       }
@@ -317,13 +322,16 @@ std::vector<vb::batch::TrialRow> WriteIndex(const Options& o, const vb::batch::M
                                             const std::vector<vb::batch::TrialKey>& mine,
                                             const vb::batch::Shard& shard,
                                             const std::string& settings,
-                                            const vb::io::Provenance& build) {
+                                            const vb::io::Provenance& build,
+                                            std::map<size_t, vb::batch::TrialRow>* records) {
   const fs::path out = o.out_dir;
   std::vector<vb::batch::TrialRow> rows;
   for (const vb::batch::TrialKey& k : mine) {
     const fs::path json = out / "trials" / (vb::batch::TrialStem(spec, k) + ".json");
     if (!fs::exists(json)) continue;
-    vb::batch::TrialRow r = vb::io::ReadTrialJson(json.string());
+    const auto known = records->find(k.matrix_index);
+    vb::batch::TrialRow r = known != records->end() ? std::move(known->second)
+                                                    : vb::io::ReadTrialJson(json.string());
     const vb::batch::MatrixTask& t = spec.tasks[k.task_index];
     r.matrix_index = k.matrix_index;
     r.scale = t.scale;
@@ -384,9 +392,9 @@ int Run(const Options& o) {
               all.size(), shard.index, shard.count, mine.size(), plan.done_before,
               plan.todo.size(), jobs, o.out_dir.c_str());
   std::fflush(stdout);
-  const RunCounts c = RunTrials(o, spec, parsed, plan.todo, jobs, lock_fd);
+  RunCounts c = RunTrials(o, spec, parsed, plan.todo, jobs, lock_fd);
   const std::vector<vb::batch::TrialRow> rows =
-      WriteIndex(o, spec, all, mine, shard, settings, build);
+      WriteIndex(o, spec, all, mine, shard, settings, build, &c.records);
 
   std::map<std::string, int> counts;
   for (const vb::batch::TrialRow& r : rows) ++counts[r.status];
