@@ -53,9 +53,12 @@ std::unique_ptr<vb::runner::Episode> BuildWorld(const Options& o, const ParsedIn
   }
 }
 
+const int kComputedSignal = SIGRTMIN;
+
 [[noreturn]] void RunWorker(const Options& o, const vb::batch::MatrixTask& t,
                             const ParsedInputs& parsed, vb::runner::Episode* world,
-                            const vb::batch::TrialKey& key, const std::string& stem_path) {
+                            const vb::batch::TrialKey& key, const std::string& stem_path,
+                            int seq) {
   int code = 0;
   try {
     if (!t.load_error.empty()) {
@@ -95,6 +98,10 @@ std::unique_ptr<vb::runner::Episode> BuildWorld(const Options& o, const ParsedIn
         with_soil = soil.has_value();
         r = vb::runner::RunTrial(task, params, spec, rules, soil ? &*soil : nullptr, &Models());
       }
+      // Computed: the parent may start the next trial while this one writes its files.
+      union sigval value;
+      value.sival_int = seq;
+      ::sigqueue(::getppid(), kComputedSignal, value);
       // Trajectory first: a record's presence implies its trajectory is complete.
       vb::io::WriteTrajectoryCsv(r, stem_path + "_traj.csv");
       // The task's hash: the parent's, taken from the same files it parsed this task from.

@@ -25,9 +25,15 @@ constexpr int kWorkerIoFailureExit = 3;
 // loaded here. `world`, if not null, is the parent's episode of the trial's world (BuildWorld),
 // inherited copy-on-write: the trial runs on it instead of building the static world again.
 // Never returns.
+// When the trial is computed, before its files are written, the worker sends its parent
+// kComputedSignal with `seq` (sigqueue), and the parent starts the next trial in its slot.
 [[noreturn]] void RunWorker(const Options& o, const vb::batch::MatrixTask& t,
                             const ParsedInputs& parsed, vb::runner::Episode* world,
-                            const vb::batch::TrialKey& key, const std::string& stem_path);
+                            const vb::batch::TrialKey& key, const std::string& stem_path,
+                            int seq);
+
+// The worker's "trial computed, writing" signal (queued, real-time: one per worker, none lost).
+extern const int kComputedSignal;
 
 // The static world of trial `key` (terrain, maps, planning grid, obstacle field: a
 // vb::runner::Episode before Reset; it depends on the task, vehicle and perception, everything
