@@ -5,10 +5,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <atomic>
-#include <exception>
-#include <optional>
-#include <thread>
 #include <cmath>
 #include <filesystem>
 
@@ -42,42 +38,6 @@ std::vector<std::string> NameList(const std::string& flag, const std::string& te
       throw vb::InputError("", 0, flag, "unknown name '" + n + "'; valid: " + vb::io::JoinNames(valid));
     }
   }
-  return out;
-}
-
-// A task file parsed and hashed ahead of BuildSpec's loop; what failed is rethrown there, where
-// the serial loading threw it.
-struct ParsedTask {
-  std::optional<vb::terrain::TaskSpec> task;
-  std::exception_ptr load_error;
-  std::string task_fnv1a64;
-  std::exception_ptr hash_error;
-};
-
-std::vector<ParsedTask> LoadTasks(const std::vector<std::string>& files, int threads) {
-  std::vector<ParsedTask> out(files.size());
-  std::atomic<size_t> next{0};
-  auto work = [&]() {
-    for (size_t i = next++; i < files.size(); i = next++) {
-      try {
-        out[i].task = vb::io::LoadTask(files[i]);
-      } catch (...) {
-        out[i].load_error = std::current_exception();
-        continue;
-      }
-      try {
-        out[i].task_fnv1a64 =
-            vb::io::MakeProvenance(*out[i].task, vb::runner::TrialSpec()).task_fnv1a64;
-      } catch (...) {
-        out[i].hash_error = std::current_exception();
-      }
-    }
-  };
-  const size_t n = std::min(files.size(), static_cast<size_t>(std::max(1, threads)));
-  std::vector<std::thread> pool;
-  for (size_t k = 1; k < n; ++k) pool.emplace_back(work);
-  work();
-  for (std::thread& t : pool) t.join();
   return out;
 }
 
@@ -148,19 +108,14 @@ vb::batch::MatrixSpec BuildSpec(const Options& o, const std::vector<std::string>
       scales.push_back(vb::io::ParseNonNegative("--scale", s));
     }
   }
-  // The task files are parsed (and hashed) on up to --jobs threads first, ~10 ms each: the
-  // batch's first trial waits for all of them (1000-task benchmark: ~1 s on one core).
-  const std::vector<ParsedTask> loaded = LoadTasks(files, o.jobs > 0 ? o.jobs : DefaultJobs());
-  for (size_t fi = 0; fi < files.size(); ++fi) {
-    const std::string& f = files[fi];
+  for (const std::string& f : files) {
     vb::batch::MatrixTask t;
     t.path = f;
     t.name = fs::path(f).stem().string();
     vb::terrain::TaskSpec task;
     task.source_file = f;
     try {
-      if (loaded[fi].load_error) std::rethrow_exception(loaded[fi].load_error);
-      task = std::move(*loaded[fi].task);
+      task = vb::io::LoadTask(f);
       t.name = task.name;
       t.num_pairs = static_cast<int>(task.pairs.size());
       t.scale = task.scale;
@@ -180,10 +135,7 @@ vb::batch::MatrixSpec BuildSpec(const Options& o, const std::vector<std::string>
       }
       continue;
     }
-    if (loaded[fi].hash_error) std::rethrow_exception(loaded[fi].hash_error);
-    t.task_fnv1a64 = t.load_error.empty() ? loaded[fi].task_fnv1a64
-                                          : vb::io::MakeProvenance(task, vb::runner::TrialSpec())
-                                                .task_fnv1a64;
+    t.task_fnv1a64 = vb::io::MakeProvenance(task, vb::runner::TrialSpec()).task_fnv1a64;
     if (parsed != nullptr) {
       const size_t bytes = task.heights.heights_m.size() * sizeof(double);
       if (t.load_error.empty() && parsed_task_bytes + bytes <= kParsedTaskBudget_bytes) {
