@@ -178,6 +178,12 @@ RunCounts RunTrials(const Options& o, const vb::batch::MatrixSpec& spec, const P
   // kComputedSignal (a queued real-time signal with the worker's sequence number) says a worker
   // has computed its trial and is writing its files (formatting, fsync: ~5 ms of mostly I/O
   // wait): its slot then starts the next trial. At most 2 x jobs workers exist at a time.
+  // The signal is ignored besides: its default action ends the process, and a worker that ended
+  // before its signal was taken leaves it pending (drained below before the mask is restored).
+  struct sigaction ignore {}, old_computed {};
+  ignore.sa_handler = SIG_IGN;
+  sigemptyset(&ignore.sa_mask);
+  ::sigaction(kComputedSignal, &ignore, &old_computed);
   sigset_t child_ended, old_mask;
   sigemptyset(&child_ended);
   sigaddset(&child_ended, SIGCHLD);
@@ -330,7 +336,15 @@ RunCounts RunTrials(const Options& o, const vb::batch::MatrixSpec& spec, const P
     bar.Draw(c.finished, c.successes, c.finished == todo.size());
   }
   bar.Finish();
+  // No worker is left: every "computed" signal that will come is pending now.
+  sigset_t computed;
+  sigemptyset(&computed);
+  sigaddset(&computed, kComputedSignal);
+  const timespec no_wait{0, 0};
+  while (::sigtimedwait(&computed, nullptr, &no_wait) == kComputedSignal) {
+  }
   ::sigprocmask(SIG_SETMASK, &old_mask, nullptr);
+  ::sigaction(kComputedSignal, &old_computed, nullptr);
   return c;
 }
 

@@ -55,6 +55,10 @@ std::unique_ptr<vb::runner::Episode> BuildWorld(const Options& o, const ParsedIn
 
 const int kComputedSignal = SIGRTMIN;
 
+namespace {
+pid_t g_parent = 0;   // the batch that forked this worker (DieWithParent)
+}  // namespace
+
 [[noreturn]] void RunWorker(const Options& o, const vb::batch::MatrixTask& t,
                             const ParsedInputs& parsed, vb::runner::Episode* world,
                             const vb::batch::TrialKey& key, const std::string& stem_path,
@@ -99,9 +103,12 @@ const int kComputedSignal = SIGRTMIN;
         r = vb::runner::RunTrial(task, params, spec, rules, soil ? &*soil : nullptr, &Models());
       }
       // Computed: the parent may start the next trial while this one writes its files.
-      union sigval value;
-      value.sival_int = seq;
-      ::sigqueue(::getppid(), kComputedSignal, value);
+      // Only to the batch itself: an orphaned worker's new parent (a subreaper) must not get it.
+      if (g_parent > 0 && ::getppid() == g_parent) {
+        union sigval value;
+        value.sival_int = seq;
+        ::sigqueue(g_parent, kComputedSignal, value);
+      }
       // Trajectory first: a record's presence implies its trajectory is complete.
       vb::io::WriteTrajectoryCsv(r, stem_path + "_traj.csv");
       // The task's hash: the parent's, taken from the same files it parsed this task from.
@@ -132,6 +139,7 @@ const int kComputedSignal = SIGRTMIN;
 }
 
 void DieWithParent(pid_t parent) {
+  g_parent = parent;
   ::prctl(PR_SET_PDEATHSIG, SIGKILL);
   // The parent may have died between fork and prctl: then nobody would send the signal.
   if (::getppid() != parent) std::_Exit(1);
