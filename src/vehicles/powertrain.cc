@@ -86,6 +86,7 @@ void ComputeWheelTorques(const VehicleParams& p, double throttle,
   s->engine_speed_radps = std::max(0.0, mean_speed / ratio_after);
   s->engine_torque_nm = EngineTorque(p.engine, s->engine_speed_radps, throttle);
 
+  s->driveshaft_torque_nm = s->engine_torque_nm / p.transmission.forward_ratios[s->gear - 1];
   // Open differentials split torque equally between the driven wheels.
   const double per_wheel = s->engine_torque_nm / ratio_after / n_driven;
   for (size_t i = 0; i < n; ++i)

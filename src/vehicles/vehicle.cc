@@ -31,6 +31,7 @@ struct Vehicle::Internals {
     double side = 1.0;      // +1 left, -1 right
     const AxleParams* axle = nullptr;
     const WheelParams* wheel = nullptr;  // the axle's own or the vehicle's
+    double spin_inertia_kgm2 = 0.0;  // the wheel link's: tire, driveline share, rotor reflected
     BristleState bristle;
     TmeasyState tmeasy;
     Table1D shock_length;   // kDoubleWishbone: shock length vs wheel travel (m)
@@ -319,6 +320,7 @@ Vehicle::Vehicle(const VehicleParams& params, const terrain::Terrain& terrain, c
       if (axle.driven) wheel.inertia_kgm2.y() += driveline_inertia_per_wheel;
       if (axle.driven && rotor_inertia_per_wheel > 0.0)
         wheel.inertia_kgm2.y() += rotor_inertia_per_wheel;
+      corner.spin_inertia_kgm2 = wheel.inertia_kgm2.y();
       corner.wheel_link = static_cast<int>(links.size());
       links.push_back(wheel);
       in_->corners.push_back(corner);
@@ -419,6 +421,11 @@ void Vehicle::Synchronize(double dt) {
       world_->BaseLinearVelocity(body_).dot(chassis.rotation * Vec3::UnitX());
   ComputeWheelTorques(params_, inputs_.throttle, in_->wheel_speeds, in_->driven,
                       ground_speed_mps, dt, &in_->powertrain, &in_->wheel_torques);
+  if (!params_.driveline.engine_block_reaction) {
+    // the original's unreacted propeller-shaft torque (vehicle_params.h DrivelineParams)
+    world_->ApplyBaseTorque(body_,
+                            chassis.rotation * Vec3(in_->powertrain.driveshaft_torque_nm, 0, 0));
+  }
 
   for (size_t i = 0; i < n; ++i) {
     Internals::Corner& c = in_->corners[i];
@@ -465,9 +472,20 @@ void Vehicle::Synchronize(double dt) {
       world_->AddJointForce(body_, c.carrier_link, force_up);
     }
 
-    // drive torque on the wheel joint; brakes as an implicit velocity motor (no creep when held)
+    // drive torque on the wheel joint. The brake is an implicit velocity motor (no creep when
+    // held), except while it slips: if its torque cannot stop even the free wheel within the step
+    // (I |w| / dt above it), the motor row would only sit at its limit, so the same torque goes
+    // in as a force against the spin and the solver has one row less (issue 24; a brake that is
+    // always a torque lets a parked vehicle creep: it only damps the wheel's own I w per step).
     world_->AddJointForce(body_, c.wheel_link, in_->wheel_torques[i]);
-    world_->SetJointVelocityMotor(body_, c.wheel_link, 0.0, inputs_.braking * axle.brake_torque_nm);
+    const double brake_nm = inputs_.braking * axle.brake_torque_nm;
+    const double spin_radps = in_->wheel_speeds[i];
+    if (brake_nm > 0.0 && c.spin_inertia_kgm2 * std::abs(spin_radps) > brake_nm * dt) {
+      world_->SetJointVelocityMotor(body_, c.wheel_link, 0.0, 0.0);
+      world_->AddJointForce(body_, c.wheel_link, spin_radps > 0.0 ? -brake_nm : brake_nm);
+    } else {
+      world_->SetJointVelocityMotor(body_, c.wheel_link, 0.0, brake_nm);
+    }
 
     // wheel-ground contact: the soil for the deformable patches under the wheel, the rigid tire
     // for the rigid ones; near a seam, both (each for its own side, tire_contact.h)

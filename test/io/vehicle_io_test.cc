@@ -283,6 +283,16 @@ TEST_F(VehicleIoTest, VehicleNames) {
   EXPECT_EQ(VehicleNames(dir_), (std::vector<std::string>{"hmmwv", "zeta"}));
 }
 
+// Optional driveline key: the engine block reacts the driveshaft torque unless the file says
+// false (the original's Chrono powertrain, docs/task_format.md).
+TEST_F(VehicleIoTest, EngineBlockReactionIsOptional) {
+  EXPECT_TRUE(LoadVehicle(WriteText("a.yaml", kTinyVehicle)).driveline.engine_block_reaction);
+  const std::string text = std::string(kTinyVehicle) + "  engine_block_reaction: false\n";
+  EXPECT_FALSE(LoadVehicle(WriteText("b.yaml", text)).driveline.engine_block_reaction);
+  ExpectError(std::string(kTinyVehicle) + "  engine_block_reaction: 0.5\n", 80,
+              "driveline.engine_block_reaction", "expected true or false");
+}
+
 TEST_F(VehicleIoTest, LoadsShippedHmmwv) {
   const std::string path = VB_SOURCE_DIR "/data/vehicles/hmmwv.yaml";
   if (!fs::exists(path)) GTEST_SKIP() << path << " not present yet";

@@ -560,11 +560,14 @@ vehicles::DrivelineParams ReadDriveline(const StrictNode& node) {
                                   "lock_central_differential", "lock_torque_limit_nm",
                                   "driveshaft_inertia_kgm2", "central_box_inertia_kgm2",
                                   "axle_shaft_inertia_kgm2", "axle_box_inertia_kgm2",
-                                  "lock_coupling_nms_per_rad"});
+                                  "lock_coupling_nms_per_rad", "engine_block_reaction"});
   using P = vehicles::DrivelineParams;
   P p;
   if (m.Has("lock_coupling_nms_per_rad")) {
     p.lock_coupling_nms_per_rad = m.Required("lock_coupling_nms_per_rad").AsPositive();
+  }
+  if (m.Has("engine_block_reaction")) {
+    p.engine_block_reaction = m.Required("engine_block_reaction").AsBool();
   }
   ReadKeys(m, &p, {{"conical_ratio", kPositive, &P::conical_ratio},
                    {"lock_axle_differentials", &P::lock_axle_differentials},

@@ -19,6 +19,7 @@ struct PowertrainState {
   double time_in_gear_s = 0.0;       // since the last shift
   double engine_speed_radps = 0.0;
   double engine_torque_nm = 0.0;
+  double driveshaft_torque_nm = 0.0;  // engine torque / gear ratio, + = driving forward
 };
 
 // Shift logic of the automatic transmission. Chrono's AUTOMATIC_SIMPLE_MAP shifts on the engine

@@ -211,6 +211,13 @@ struct DrivelineParams {
   // Viscous coupling of that clutch below its limit (N m s/rad, powertrain.cc): 400 (the
   // HMMWV's) unless the file says; small vehicles need one in proportion to their wheel inertia.
   double lock_coupling_nms_per_rad = 400.0;
+  // The engine and gearbox react the driveshaft torque on the chassis (true: physical, the
+  // propeller shafts' roll reaction at the conical gears is cancelled inside the chassis). false
+  // reproduces Chrono's SIMPLE_MAP powertrain, which has no engine block: its conical gears
+  // (ChShaftsGearboxAngled) leave the propeller shafts' torque on the chassis as a net roll torque
+  // T_engine / gear ratio about chassis +x (wheeled vehicles; docs/validation.md "Why vb
+  // out-climbs the original").
+  bool engine_block_reaction = true;
   // Rotating inertia of the shafts (Chrono's ChShaftsDriveline4WD): the driveshaft and the
   // central differential box, one propeller shaft per driven axle (these turn 1/conical_ratio
   // times faster than the wheels), and one differential box per driven axle (at wheel speed).
