@@ -138,6 +138,38 @@ TEST_F(VbBatchTest, FullRunRecordsEveryTrialWithItsStatus) {
   EXPECT_NE(bad.output.find("env999_p0_s0_hmmwv_pid"), std::string::npos) << bad.output;
 }
 
+// The batch's trials run on the static world its parent built once per world (BuildWorld), the
+// two pairs of a world in two workers; vb_run builds the world itself. The same trial must come
+// out: the trajectory byte for byte, the record up to its wall-clock fields.
+TEST_F(VbBatchTest, TrialsOnTheParentsWorldAreVbRunsTrials) {
+  ASSERT_EQ(full_.exit_code, 0) << full_.output;
+  auto record = [](const fs::path& json) {
+    std::istringstream in(ReadFile(json));
+    std::string kept, line;
+    while (std::getline(in, line)) {
+      if (line.find("\"wall_time_s\"") == std::string::npos &&
+          line.find("\"real_time_factor\"") == std::string::npos) {
+        kept += line + "\n";
+      }
+    }
+    return kept;
+  };
+  for (const std::string trial : {"env061_p0", "env061_p1", "env042_p1"}) {
+    const std::string task = trial.substr(0, 6);
+    const std::string pair = trial.substr(8);
+    const fs::path out = root_ / ("vb_run_" + trial);
+    const Outcome run = Sh(VB_BIN_DIR "/vb_run " VB_SOURCE_DIR "/tasks/" + task +
+                           ".yaml --pair " + pair + " --vehicle hmmwv --time-limit 32 " +
+                           "--traj-every 20 --quiet --out " + out.string());
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    const std::string stem = trial + "_s0_hmmwv_pid";
+    EXPECT_TRUE(ReadFile(out / (stem + "_traj.csv")) ==
+                ReadFile(root_ / "full/trials" / (stem + "_traj.csv")))
+        << stem;
+    EXPECT_EQ(record(out / (stem + ".json")), record(root_ / "full/trials" / (stem + ".json")));
+  }
+}
+
 TEST_F(VbBatchTest, RerunSkipsFinishedTrials) {
   const Outcome o = Sh(kBatch + " " + kMatrix + " --out " + (root_ / "full").string());
   EXPECT_EQ(o.exit_code, 0) << o.output;

@@ -9,6 +9,7 @@
 #include <memory>
 
 #include "io/soil_io.h"
+#include "io/task_io.h"
 #include "io/vehicle_io.h"
 #include "vb/engine/error.h"
 #include "support/worlds.h"
@@ -251,6 +252,29 @@ TEST(EpisodeApiTest, AResetEpisodeRepeatsItsTrialBitForBit) {
   pid->Reset(manual.context());
   while (!manual.Done()) manual.Step(pid->Update(manual.Observe()));
   EXPECT_EQ(TrialDigestOf(manual.TakeResult()), TrialDigestOf(via_run_trial));
+}
+
+// RunTrial on an episode built beforehand (vb_batch builds one per world and its trials' workers
+// inherit it) gives the trial RunTrial builds itself, bit for bit, also when the episode already
+// ran another pair: on a deformable world with obstacles and the soil solver.
+TEST(EpisodeApiTest, ATrialOnAPrebuiltEpisodeIsTheTrialOnAFreshOne) {
+  const terrain::TaskSpec task = io::LoadTask(VB_SOURCE_DIR "/tasks/env061.yaml");
+  const soil::SoilConfig soil =
+      io::LoadSoil(std::string(VB_SOURCE_DIR) + "/data/soils/verti_bench.yaml");
+  EpisodeRules rules;
+  rules.time_limit_s = 4.0;
+  rules.trajectory_every_n_steps = 10;
+  TrialSpec pair0, pair1;
+  pair1.pair_index = 1;
+  const TrialResult fresh0 = RunTrial(task, Hmmwv(), pair0, rules, &soil);
+  const TrialResult fresh1 = RunTrial(task, Hmmwv(), pair1, rules, &soil);
+  Episode world(task, Hmmwv(), rules, &soil);
+  const TrialResult shared0 = RunTrial(&world, pair0);
+  const TrialResult shared1 = RunTrial(&world, pair1);   // after pair 0 on the same episode
+  EXPECT_EQ(TrialDigestOf(shared0), TrialDigestOf(fresh0));
+  EXPECT_EQ(TrialDigestOf(shared1), TrialDigestOf(fresh1));
+  EXPECT_NE(TrialDigestOf(fresh0), TrialDigestOf(fresh1));
+  EXPECT_EQ(shared1.trajectory.size(), fresh1.trajectory.size());
 }
 
 TEST(EpisodeApiTest, ResultBeforeTheEndIsProvisionalAndStepAfterTheEndDoesNothing) {

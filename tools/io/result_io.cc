@@ -180,7 +180,8 @@ void RecordParameterFiles(const std::string& vehicle_file, const std::string& so
   p->soil_fnv1a64 = soil_file.empty() ? "" : FileFnv1a64Hex(soil_file);
 }
 
-Provenance MakeProvenance(const terrain::TaskSpec& task, const runner::TrialSpec& spec) {
+Provenance MakeProvenance(const terrain::TaskSpec& task, const runner::TrialSpec& spec,
+                          const std::string& task_fnv1a64) {
   Provenance p;
   p.vb_version = VB_VERSION;
   p.git_commit = BuildGitCommit();
@@ -189,18 +190,22 @@ Provenance MakeProvenance(const terrain::TaskSpec& task, const runner::TrialSpec
   p.system = spec.system;
   p.seed = spec.seed;
 
-  bool ok = false;
-  const std::string task_bytes = ReadBytes(task.source_file, &ok);
-  if (!ok) throw InputError(task.source_file, 0, "", "cannot read the task file to hash it");
-  uint64_t hash = Fnv1a64(task_bytes);
-  if (!task.height_image.empty()) {
-    const std::filesystem::path image =
-        std::filesystem::path(task.source_file).parent_path() / task.height_image;
-    hash = Fnv1a64(ReadBytes(image.string(), &ok), hash);
+  if (!task_fnv1a64.empty()) {
+    p.task_fnv1a64 = task_fnv1a64;
+  } else {
+    bool ok = false;
+    const std::string task_bytes = ReadBytes(task.source_file, &ok);
+    if (!ok) throw InputError(task.source_file, 0, "", "cannot read the task file to hash it");
+    uint64_t hash = Fnv1a64(task_bytes);
+    if (!task.height_image.empty()) {
+      const std::filesystem::path image =
+          std::filesystem::path(task.source_file).parent_path() / task.height_image;
+      hash = Fnv1a64(ReadBytes(image.string(), &ok), hash);
+    }
+    char hex[17];
+    std::snprintf(hex, sizeof(hex), "%016" PRIx64, hash);
+    p.task_fnv1a64 = hex;
   }
-  char hex[17];
-  std::snprintf(hex, sizeof(hex), "%016" PRIx64, hash);
-  p.task_fnv1a64 = hex;
 
   char host[256] = {0};
   if (::gethostname(host, sizeof(host) - 1) == 0) p.host = host;
@@ -285,21 +290,28 @@ void WriteTrajectoryCsv(const runner::TrialResult& r, const std::string& path) {
   for (size_t i = 0; i < wheels; ++i) text += ",surface_w" + std::to_string(i);
   for (size_t i = 0; i < wheels; ++i) text += ",sinkage_w" + std::to_string(i) + "_m";
   text += "\n";
+  text.reserve(text.size() + r.trajectory.size() * (15 * 24 + wheels * 26));   // ~upper bound
   for (const runner::TrajectorySample& s : r.trajectory) {
     const double values[] = {s.time_s,         s.position_W.x(), s.position_W.y(),
                              s.position_W.z(), s.velocity_W.x(), s.velocity_W.y(),
                              s.velocity_W.z(), s.speed_mps,      s.rpy.roll_rad * kRadToDeg,
                              s.rpy.pitch_rad * kRadToDeg,        s.rpy.yaw_rad * kRadToDeg,
                              s.throttle,       s.steering,       s.braking};
-    for (double v : values) text += Number(v) + ",";
+    // Appended in place (AppendExact: FormatExact's bytes without a string per number).
+    for (double v : values) {
+      AppendExact(v, &text);
+      text += ',';
+    }
     text += std::to_string(s.gear);
     for (size_t i = 0; i < wheels; ++i) {
-      text += "," + std::to_string(i < s.wheel_surface.size() ? s.wheel_surface[i] : -1);
+      text += ',';
+      text += std::to_string(i < s.wheel_surface.size() ? s.wheel_surface[i] : -1);
     }
     for (size_t i = 0; i < wheels; ++i) {
-      text += "," + Number(i < s.wheel_sinkage_m.size() ? s.wheel_sinkage_m[i] : 0.0);
+      text += ',';
+      AppendExact(i < s.wheel_sinkage_m.size() ? s.wheel_sinkage_m[i] : 0.0, &text);
     }
-    text += "\n";
+    text += '\n';
   }
   WriteAtomically(path, text);
 }

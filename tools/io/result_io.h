@@ -43,7 +43,10 @@ struct Provenance {
 
 // Fills a Provenance for a trial of `task` (reads the task file and its height image to hash
 // them; a missing file hashes as empty). Throws InputError if the task file cannot be read.
-Provenance MakeProvenance(const terrain::TaskSpec& task, const runner::TrialSpec& spec);
+// A caller that already hashed the same files (vb_batch's parent, which parsed the task) passes
+// the hash as `task_fnv1a64`, and nothing is read.
+Provenance MakeProvenance(const terrain::TaskSpec& task, const runner::TrialSpec& spec,
+                          const std::string& task_fnv1a64 = std::string());
 
 // 64-bit FNV-1a of `bytes`, continuing from `hash` (start with kFnv1a64Offset).
 constexpr uint64_t kFnv1a64Offset = 0xcbf29ce484222325ull;

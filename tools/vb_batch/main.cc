@@ -16,6 +16,8 @@
 #include <ctime>
 #include <filesystem>
 #include <map>
+#include <memory>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -56,6 +58,8 @@ struct Running {
   vb::batch::TrialKey key;
   std::string stem;
   Clock::time_point start;
+  int seq = 0;             // its position in the run's todo list (the worker's "computed" signal)
+  bool computing = true;   // false once the worker said its trial is computed (it is writing)
 };
 
 struct Plan {
@@ -151,6 +155,9 @@ class ProgressBar {
 struct RunCounts {
   size_t finished = 0, successes = 0, crashed = 0;
   size_t io_failed = 0;   // trials left without a record because a file could not be written
+  // The records the workers wrote, as read back when they ended (by matrix index): the index
+  // takes them from here instead of reading the files a second time.
+  std::map<size_t, vb::batch::TrialRow> records;
 };
 
 // Runs `todo` with up to `jobs` forked workers at a time until done or a stop signal; a worker
@@ -168,15 +175,45 @@ RunCounts RunTrials(const Options& o, const vb::batch::MatrixSpec& spec, const P
 
   // SIGCHLD stays blocked in the parent so that a worker's end wakes the wait below at once (it
   // is pending even when the worker ended before the wait began); workers get the old mask back.
+  // kComputedSignal (a queued real-time signal with the worker's sequence number) says a worker
+  // has computed its trial and is writing its files (formatting, fsync: ~5 ms of mostly I/O
+  // wait): its slot then starts the next trial. At most 2 x jobs workers exist at a time.
+  // The signal is ignored besides: its default action ends the process, and a worker that ended
+  // before its signal was taken leaves it pending (drained below before the mask is restored).
+  struct sigaction ignore {}, old_computed {};
+  ignore.sa_handler = SIG_IGN;
+  sigemptyset(&ignore.sa_mask);
+  ::sigaction(kComputedSignal, &ignore, &old_computed);
   sigset_t child_ended, old_mask;
   sigemptyset(&child_ended);
   sigaddset(&child_ended, SIGCHLD);
+  sigaddset(&child_ended, kComputedSignal);
   ::sigprocmask(SIG_BLOCK, &child_ended, &old_mask);
 
   std::map<pid_t, Running> running;
   size_t next = 0;
   RunCounts c;
   const pid_t parent = ::getpid();
+  // The static worlds (BuildWorld) of the task of todo[next], one per vehicle and perception,
+  // each built once and inherited by its trials' workers; dropped when the trials move on to the
+  // next task (the matrix is task-major). Built while the workers run (after the slots are
+  // filled), so that building costs no slot time.
+  std::map<std::pair<std::string, std::string>, std::unique_ptr<vb::runner::Episode>> worlds;
+  size_t worlds_task = spec.tasks.size();
+  auto prepare_world = [&]() -> vb::runner::Episode* {
+    if (next >= todo.size()) {
+      worlds.clear();
+      return nullptr;
+    }
+    const vb::batch::TrialKey& k = todo[next];
+    if (k.task_index != worlds_task) {
+      worlds.clear();
+      worlds_task = k.task_index;
+    }
+    auto [it, inserted] = worlds.try_emplace({k.vehicle, k.perception});
+    if (inserted) it->second = BuildWorld(o, parsed, k);
+    return it->second.get();
+  };
   while (next < todo.size() || !running.empty()) {
     // After a failed write (disk full) starting more trials only burns CPU: let the running ones
     // end, then stop; the trials without a record run on resume.
@@ -186,7 +223,15 @@ RunCounts RunTrials(const Options& o, const vb::batch::MatrixSpec& spec, const P
       for (const auto& [p, r] : running) ::waitpid(p, nullptr, 0);
       break;
     }
-    while (next < todo.size() && static_cast<int>(running.size()) < jobs) {
+    auto computing = [&]() {
+      int n = 0;
+      for (const auto& [p, r] : running) n += r.computing;
+      return n;
+    };
+    while (next < todo.size() && computing() < jobs &&
+           static_cast<int>(running.size()) < 2 * jobs) {
+      vb::runner::Episode* const world = prepare_world();
+      const int seq = static_cast<int>(next);
       const vb::batch::TrialKey& k = todo[next++];
       const std::string stem = vb::batch::TrialStem(spec, k);
       std::fflush(stdout);
@@ -199,10 +244,12 @@ RunCounts RunTrials(const Options& o, const vb::batch::MatrixSpec& spec, const P
         ::signal(SIGTERM, SIG_DFL);
         ::sigprocmask(SIG_SETMASK, &old_mask, nullptr);
         ::close(lock_fd);
-        RunWorker(o, spec.tasks[k.task_index], parsed, k, (trials_dir / stem).string());
+        RunWorker(o, spec.tasks[k.task_index], parsed, world, k,
+                  (trials_dir / stem).string(), seq);
       }
-      running[pid] = Running{k, stem, Clock::now()};
+      running[pid] = Running{k, stem, Clock::now(), seq};
     }
+    if (c.io_failed == 0 && g_stop_signal == 0) prepare_world();   // the next world, meanwhile
     int status = 0;
     const pid_t pid = ::waitpid(-1, &status, WNOHANG);
     if (pid == 0) {   // nothing finished: enforce the wall-clock limit, redraw, poll again
@@ -218,7 +265,13 @@ RunCounts RunTrials(const Options& o, const vb::batch::MatrixSpec& spec, const P
       // wall-clock limits). Polling with a fixed sleep instead left each of the 2 slots idle for
       // ~10 ms per trial on average (~5 s of a 1000-trial batch).
       const timespec poll{0, 100'000'000};
-      ::sigtimedwait(&child_ended, nullptr, &poll);
+      siginfo_t info{};
+      if (::sigtimedwait(&child_ended, &info, &poll) == kComputedSignal) {
+        const auto it = running.find(info.si_pid);
+        if (it != running.end() && it->second.seq == info.si_value.sival_int) {
+          it->second.computing = false;
+        }
+      }
       continue;
     }
     if (pid < 0) {
@@ -248,7 +301,9 @@ RunCounts RunTrials(const Options& o, const vb::batch::MatrixSpec& spec, const P
     bool have_record = WIFEXITED(status) && WEXITSTATUS(status) == 0 && fs::exists(json);
     if (have_record) {
       try {
-        result = vb::io::ReadTrialJson(json).status;
+        vb::batch::TrialRow row = vb::io::ReadTrialJson(json);
+        result = row.status;
+        c.records[r.key.matrix_index] = std::move(row);
       } catch (const vb::InputError&) {
         have_record = false;
       }
@@ -281,7 +336,15 @@ RunCounts RunTrials(const Options& o, const vb::batch::MatrixSpec& spec, const P
     bar.Draw(c.finished, c.successes, c.finished == todo.size());
   }
   bar.Finish();
+  // No worker is left: every "computed" signal that will come is pending now.
+  sigset_t computed;
+  sigemptyset(&computed);
+  sigaddset(&computed, kComputedSignal);
+  const timespec no_wait{0, 0};
+  while (::sigtimedwait(&computed, nullptr, &no_wait) == kComputedSignal) {
+  }
   ::sigprocmask(SIG_SETMASK, &old_mask, nullptr);
+  ::sigaction(kComputedSignal, &old_computed, nullptr);
   return c;
 }
 
@@ -292,13 +355,16 @@ std::vector<vb::batch::TrialRow> WriteIndex(const Options& o, const vb::batch::M
                                             const std::vector<vb::batch::TrialKey>& mine,
                                             const vb::batch::Shard& shard,
                                             const std::string& settings,
-                                            const vb::io::Provenance& build) {
+                                            const vb::io::Provenance& build,
+                                            std::map<size_t, vb::batch::TrialRow>* records) {
   const fs::path out = o.out_dir;
   std::vector<vb::batch::TrialRow> rows;
   for (const vb::batch::TrialKey& k : mine) {
     const fs::path json = out / "trials" / (vb::batch::TrialStem(spec, k) + ".json");
     if (!fs::exists(json)) continue;
-    vb::batch::TrialRow r = vb::io::ReadTrialJson(json.string());
+    const auto known = records->find(k.matrix_index);
+    vb::batch::TrialRow r = known != records->end() ? std::move(known->second)
+                                                    : vb::io::ReadTrialJson(json.string());
     const vb::batch::MatrixTask& t = spec.tasks[k.task_index];
     r.matrix_index = k.matrix_index;
     r.scale = t.scale;
@@ -359,9 +425,9 @@ int Run(const Options& o) {
               all.size(), shard.index, shard.count, mine.size(), plan.done_before,
               plan.todo.size(), jobs, o.out_dir.c_str());
   std::fflush(stdout);
-  const RunCounts c = RunTrials(o, spec, parsed, plan.todo, jobs, lock_fd);
+  RunCounts c = RunTrials(o, spec, parsed, plan.todo, jobs, lock_fd);
   const std::vector<vb::batch::TrialRow> rows =
-      WriteIndex(o, spec, all, mine, shard, settings, build);
+      WriteIndex(o, spec, all, mine, shard, settings, build, &c.records);
 
   std::map<std::string, int> counts;
   for (const vb::batch::TrialRow& r : rows) ++counts[r.status];

@@ -3,11 +3,13 @@
 
 #include <sys/types.h>
 
+#include <memory>
 #include <string>
 
 #include "options.h"
 #include "setup.h"
 #include "vb/batch/matrix.h"
+#include "vb/engine/runner/episode.h"
 
 namespace vb_batch {
 
@@ -20,10 +22,28 @@ constexpr int kWorkerIoFailureExit = 3;
 // cannot be set up (bad input only: an I/O failure is never an `error`). Exits 0 when a record was
 // written, kWorkerIoFailureExit when writing failed, 1 otherwise (the parent then records the
 // trial as `crashed`). Inputs the parent parsed (`parsed`) are used as they are; the rest is
-// loaded here. Never returns.
+// loaded here. `world`, if not null, is the parent's episode of the trial's world (BuildWorld),
+// inherited copy-on-write: the trial runs on it instead of building the static world again.
+// Never returns.
+// When the trial is computed, before its files are written, the worker sends its parent
+// kComputedSignal with `seq` (sigqueue), and the parent starts the next trial in its slot.
 [[noreturn]] void RunWorker(const Options& o, const vb::batch::MatrixTask& t,
-                            const ParsedInputs& parsed, const vb::batch::TrialKey& key,
-                            const std::string& stem_path);
+                            const ParsedInputs& parsed, vb::runner::Episode* world,
+                            const vb::batch::TrialKey& key, const std::string& stem_path,
+                            int seq);
+
+// The worker's "trial computed, writing" signal (queued, real-time: one per worker, none lost).
+extern const int kComputedSignal;
+
+// The static world of trial `key` (terrain, maps, planning grid, obstacle field: a
+// vb::runner::Episode before Reset; it depends on the task, vehicle and perception, everything
+// else is the batch's) from what the parent parsed. The parent builds it once per world and its
+// trials' workers inherit it, instead of each building it again (~27 M instructions, ~10 ms, and
+// the page faults of its memory; docs/benchmarks.md "The batch's own cost"). Null when an input
+// was not parsed or the episode cannot be built: the worker then builds it itself and reports
+// any error as before.
+std::unique_ptr<vb::runner::Episode> BuildWorld(const Options& o, const ParsedInputs& parsed,
+                                                const vb::batch::TrialKey& key);
 
 // "worker killed by signal 11 (Segmentation fault)" etc., from a waitpid status.
 std::string DescribeWaitStatus(int status);

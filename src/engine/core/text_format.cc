@@ -1,13 +1,28 @@
 #include "vb/engine/text_format.h"
 
-#include <cstdio>
+#include <charconv>
 
 namespace vb {
 
+namespace {
+
+// %.17g by std::to_chars, which the standard defines as printf's conversion in the "C" locale
+// with that precision (libstdc++: Ryu printf, exact). ~4x faster than snprintf; the same bytes,
+// nan/inf included (TextFormat tests; 3e7 random values checked against snprintf).
+inline char* WriteExact(char* first, char* last, double v) {
+  return std::to_chars(first, last, v, std::chars_format::general, 17).ptr;
+}
+
+}  // namespace
+
 std::string FormatExact(double v) {
   char buf[32];
-  std::snprintf(buf, sizeof(buf), "%.17g", v);
-  return buf;
+  return std::string(buf, WriteExact(buf, buf + sizeof(buf), v));
+}
+
+void AppendExact(double v, std::string* out) {
+  char buf[32];
+  out->append(buf, WriteExact(buf, buf + sizeof(buf), v));
 }
 
 std::string CsvField(const std::string& s) {

@@ -29,12 +29,23 @@ TrialResult RunTrial(const terrain::TaskSpec& task, const vehicles::VehicleParam
   const auto wall_start = Clock::now();
   ValidateSystemName(spec.system);
   Episode episode(task, vehicle, rules, soil);
+  TrialResult result = RunTrial(&episode, spec, models);
+  result.wall_time_s = std::chrono::duration<double>(Clock::now() - wall_start).count();
+  result.real_time_factor = result.wall_time_s > 0.0 ? result.sim_time_s / result.wall_time_s : 0.0;
+  return result;
+}
+
+TrialResult RunTrial(Episode* episode_ptr, const TrialSpec& spec, const nn::ModelStore* models) {
+  using Clock = std::chrono::steady_clock;
+  const auto wall_start = Clock::now();
+  ValidateSystemName(spec.system);
+  Episode& episode = *episode_ptr;
   std::unique_ptr<controllers::Controller> controller = MakeSystem(spec.system, episode, models);
   episode.SetObservationConfig(controller->observation_config());
   episode.Reset(spec);
   controller->Reset(episode.context());
 
-  StepTimings* const timings = rules.timings;
+  StepTimings* const timings = episode.rules().timings;
   while (!episode.Done()) {
     const auto t0 = timings != nullptr ? Clock::now() : Clock::time_point();
     controllers::Command command;

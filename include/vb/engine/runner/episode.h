@@ -236,4 +236,11 @@ TrialResult RunTrial(const terrain::TaskSpec& task, const vehicles::VehicleParam
                      const soil::SoilConfig* soil = nullptr,
                      const nn::ModelStore* models = nullptr);
 
+// The same trial on an episode built beforehand from the task, vehicle, rules and soil: the
+// identical result (bit for bit; the episode's static world does not change with trials), without
+// building the static world again. vb_batch builds it once per world in the parent process and
+// lets every forked trial of that world inherit it. Wall time counts from this call.
+TrialResult RunTrial(Episode* episode, const TrialSpec& spec,
+                     const nn::ModelStore* models = nullptr);
+
 }  // namespace vb::runner
