@@ -180,6 +180,21 @@ void RecordParameterFiles(const std::string& vehicle_file, const std::string& so
   p->soil_fnv1a64 = soil_file.empty() ? "" : FileFnv1a64Hex(soil_file);
 }
 
+std::string TaskFnv1a64(const terrain::TaskSpec& task) {
+  bool ok = false;
+  const std::string task_bytes = ReadBytes(task.source_file, &ok);
+  if (!ok) throw InputError(task.source_file, 0, "", "cannot read the task file to hash it");
+  uint64_t hash = Fnv1a64(task_bytes);
+  if (!task.height_image.empty()) {
+    const std::filesystem::path image =
+        std::filesystem::path(task.source_file).parent_path() / task.height_image;
+    hash = Fnv1a64(ReadBytes(image.string(), &ok), hash);
+  }
+  char hex[17];
+  std::snprintf(hex, sizeof(hex), "%016" PRIx64, hash);
+  return hex;
+}
+
 Provenance MakeProvenance(const terrain::TaskSpec& task, const runner::TrialSpec& spec,
                           const std::string& task_fnv1a64) {
   Provenance p;
@@ -190,22 +205,7 @@ Provenance MakeProvenance(const terrain::TaskSpec& task, const runner::TrialSpec
   p.system = spec.system;
   p.seed = spec.seed;
 
-  if (!task_fnv1a64.empty()) {
-    p.task_fnv1a64 = task_fnv1a64;
-  } else {
-    bool ok = false;
-    const std::string task_bytes = ReadBytes(task.source_file, &ok);
-    if (!ok) throw InputError(task.source_file, 0, "", "cannot read the task file to hash it");
-    uint64_t hash = Fnv1a64(task_bytes);
-    if (!task.height_image.empty()) {
-      const std::filesystem::path image =
-          std::filesystem::path(task.source_file).parent_path() / task.height_image;
-      hash = Fnv1a64(ReadBytes(image.string(), &ok), hash);
-    }
-    char hex[17];
-    std::snprintf(hex, sizeof(hex), "%016" PRIx64, hash);
-    p.task_fnv1a64 = hex;
-  }
+  p.task_fnv1a64 = task_fnv1a64.empty() ? TaskFnv1a64(task) : task_fnv1a64;
 
   char host[256] = {0};
   if (::gethostname(host, sizeof(host) - 1) == 0) p.host = host;

@@ -41,10 +41,12 @@ struct Provenance {
   std::string operator_name;
 };
 
-// Fills a Provenance for a trial of `task` (reads the task file and its height image to hash
-// them; a missing file hashes as empty). Throws InputError if the task file cannot be read.
-// A caller that already hashed the same files (vb_batch's parent, which parsed the task) passes
-// the hash as `task_fnv1a64`, and nothing is read.
+// 64-bit FNV-1a (16 hex digits) of the task file and its height image (a missing image hashes as
+// empty): the task's identity in records. Throws InputError if the task file cannot be read.
+std::string TaskFnv1a64(const terrain::TaskSpec& task);
+
+// Fills a Provenance for a trial of `task`, its hash by TaskFnv1a64 unless the caller already has
+// it (`task_fnv1a64`: vb_batch's parent hashed the files it parsed the task from).
 Provenance MakeProvenance(const terrain::TaskSpec& task, const runner::TrialSpec& spec,
                           const std::string& task_fnv1a64 = std::string());
 

@@ -135,7 +135,7 @@ vb::batch::MatrixSpec BuildSpec(const Options& o, const std::vector<std::string>
       }
       continue;
     }
-    t.task_fnv1a64 = vb::io::MakeProvenance(task, vb::runner::TrialSpec()).task_fnv1a64;
+    t.task_fnv1a64 = vb::io::TaskFnv1a64(task);
     if (parsed != nullptr) {
       const size_t bytes = task.heights.heights_m.size() * sizeof(double);
       if (t.load_error.empty() && parsed_task_bytes + bytes <= kParsedTaskBudget_bytes) {

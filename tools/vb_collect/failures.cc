@@ -185,7 +185,7 @@ class FailuresMode : public Mode {
       r.SetText("trial", stems_[static_cast<size_t>(e)]);
       r.SetText("task", row.task);
       r.SetText("task_file", row.task_file);
-      r.SetText("task_fnv1a64", vb::io::MakeProvenance(task, spec).task_fnv1a64);
+      r.SetText("task_fnv1a64", vb::io::TaskFnv1a64(task));
       r.SetInt("pair", row.pair);
       r.SetText("vehicle", row.vehicle);
       r.SetText("vehicle_fnv1a64", vb::io::FileFnv1a64Hex(vehicle_file_));

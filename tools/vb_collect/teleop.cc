@@ -163,7 +163,7 @@ vb::terrain::TaskSpec FindTask(const Recording& rec, const std::string& tasks_di
     if (!fs::is_regular_file(path, ec)) continue;
     vb::terrain::TaskSpec task = vb::io::LoadTask(path);
     const std::string hash =
-        vb::io::MakeProvenance(task, vb::runner::TrialSpec()).task_fnv1a64;
+        vb::io::TaskFnv1a64(task);
     if (task.name == rec.row.task && hash == rec.row.task_fnv1a64) return task;
     if (mismatch.empty()) {
       mismatch = task.name != rec.row.task

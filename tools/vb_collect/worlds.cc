@@ -92,7 +92,7 @@ void WorldEpisodes::Describe(long e, const vb::runner::TrialSpec& spec, const st
   r->SetText("mode", mode);
   r->SetText("task", world_.task.name);
   r->SetText("task_file", "worlds/" + gen.name + ".yaml");
-  r->SetText("task_fnv1a64", vb::io::MakeProvenance(world_.task, spec).task_fnv1a64);
+  r->SetText("task_fnv1a64", vb::io::TaskFnv1a64(world_.task));
   r->SetInt("pair", spec.pair_index);
   r->SetText("vehicle", o_.vehicle);
   r->SetText("vehicle_fnv1a64",

@@ -595,7 +595,7 @@ void Server::WriteIndex(const json& j, std::string* reply) {
   std::deque<std::pair<terrain::TaskSpec, std::string>> known;   // task, FNV-1a (stable refs)
   std::vector<std::string> set_dirs;
   for (const terrain::TaskSpec& t : tasks_) {
-    known.emplace_back(t, io::MakeProvenance(t, runner::TrialSpec()).task_fnv1a64);
+    known.emplace_back(t, io::TaskFnv1a64(t));
     const std::string d = fs::path(t.source_file).parent_path().string();
     if (std::find(set_dirs.begin(), set_dirs.end(), d) == set_dirs.end()) set_dirs.push_back(d);
   }
@@ -618,7 +618,7 @@ void Server::WriteIndex(const json& j, std::string* reply) {
       std::error_code ec;
       if (!fs::is_regular_file(c, ec)) continue;
       terrain::TaskSpec t = io::LoadTask(c);
-      std::string h = io::MakeProvenance(t, runner::TrialSpec()).task_fnv1a64;
+      std::string h = io::TaskFnv1a64(t);
       if (!matches(r, t, h)) continue;
       known.emplace_back(std::move(t), std::move(h));
       return known.back().first;
