@@ -106,6 +106,7 @@ struct PhysicsWorld::Impl {
     Vec3 p = Vec3::Zero();      // COM
     Vec3 pivot = Vec3::Zero();
     Vec3 axis_W = Vec3::UnitY();
+    Pose pose;                  // p and rot as the read-out gives them
     // read-out velocities (prescribed rates included), world frame
     Vec3 w_ro = Vec3::Zero(), v_ro = Vec3::Zero();
     // scratch of the step: velocities without prescribed rates, bias accelerations
@@ -167,6 +168,8 @@ struct PhysicsWorld::Impl {
         l.pivot = p_p + R_p * l.e_P;
       }
       l.p = l.pivot + l.R * l.d_L;
+      l.pose.position = l.p;
+      l.pose.rotation = l.rot.normalized();
     }
     b.kin_stale = false;
     b.vel_stale = true;
@@ -707,11 +710,7 @@ Pose PhysicsWorld::LinkPose(MultiBodyId id, int link) const {
   const Impl::Body& b = impl_->Get(id);
   VB_DEMAND(link >= 0 && link < static_cast<int>(b.links.size()));
   Impl::Kinematics(b);
-  const Impl::Link& l = b.links[static_cast<size_t>(link)];
-  Pose p;
-  p.position = l.p;
-  p.rotation = l.rot.normalized();
-  return p;
+  return b.links[static_cast<size_t>(link)].pose;
 }
 
 Vec3 PhysicsWorld::LinkPointVelocity(MultiBodyId id, int link, const Vec3& point_W) const {
