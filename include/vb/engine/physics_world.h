@@ -60,6 +60,10 @@ struct ObstacleContact {
   int obstacle_tag = -1;
 };
 
+// Sorts by body, then tag, and drops repeats: the order of PhysicsWorld::ObstacleContacts() (for
+// the adapters).
+void SortObstacleContacts(std::vector<ObstacleContact>* contacts);
+
 // A unilateral contact of a body with the static world for the next step (from vb's own contact
 // generation): non-penetration along normal_W with Coulomb friction, solved implicitly with the
 // joints. The static side is the point point_W + normal_W * depth_m.

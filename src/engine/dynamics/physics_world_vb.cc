@@ -770,15 +770,7 @@ void PhysicsWorld::Step(double dt) {
   m.pending_contacts.clear();
   for (const ObstacleContact& t : m.pending_touches) m.contacts.push_back(t);
   m.pending_touches.clear();
-  std::sort(m.contacts.begin(), m.contacts.end(),
-            [](const ObstacleContact& x, const ObstacleContact& y) {
-              return x.body != y.body ? x.body < y.body : x.obstacle_tag < y.obstacle_tag;
-            });
-  m.contacts.erase(std::unique(m.contacts.begin(), m.contacts.end(),
-                               [](const ObstacleContact& x, const ObstacleContact& y) {
-                                 return x.body == y.body && x.obstacle_tag == y.obstacle_tag;
-                               }),
-                   m.contacts.end());
+  SortObstacleContacts(&m.contacts);
 }
 
 const std::vector<ObstacleContact>& PhysicsWorld::ObstacleContacts() const {
