@@ -214,9 +214,28 @@ bool SeparatedByAFaceOf(const engine::ConvexShape& a, const engine::ConvexShape&
 
 }  // namespace
 
+bool MayTouchAnObstacle(const engine::ConvexShape& body, const ObstacleField& field,
+                        ContactScratch* scratch) {
+  field.Overlapping(body.aabb_min, body.aabb_max, &scratch->obstacles);
+  for (int index : scratch->obstacles) {
+    const Obstacle& o = field.obstacles()[static_cast<size_t>(index)];
+    if (!SeparatedByAFaceOf(o.shape, body) && !SeparatedByAFaceOf(body, o.shape)) return true;
+  }
+  return false;
+}
+
 void ObstacleContacts(const engine::ConvexShape& body, const ObstacleField& field,
                       double body_friction, int max_per_obstacle, ContactScratch* scratch,
                       std::vector<BodyContact>* out) {
+  ObstacleContacts(body, body.samples, Pose(), field, body_friction, max_per_obstacle, scratch,
+                   out);
+}
+
+void ObstacleContacts(const engine::ConvexShape& body, const std::vector<Vec3>& samples_B,
+                      const Pose& pose, const ObstacleField& field, double body_friction,
+                      int max_per_obstacle, ContactScratch* scratch,
+                      std::vector<BodyContact>* out) {
+  const Mat3 r = pose.rotation.toRotationMatrix();
   field.Overlapping(body.aabb_min, body.aabb_max, &scratch->obstacles);
   for (int index : scratch->obstacles) {
     const Obstacle& o = field.obstacles()[static_cast<size_t>(index)];
@@ -225,9 +244,25 @@ void ObstacleContacts(const engine::ConvexShape& body, const ObstacleField& fiel
     std::vector<BodyContact>& cand = scratch->candidates;
     cand.clear();
     const double mu = std::min(body_friction, o.friction);
-    // body samples inside the obstacle
+    // Body samples inside the obstacle. A sample is posed (as ConvexShape::TransformSamplesInto
+    // does) only if it lies in the box, in the body's frame, around the obstacle's box: one
+    // outside it is outside the obstacle's box in the world by at least kPoseMargin_m, far more
+    // than any rounding, so the world test below would skip it too.
+    Vec3 lo_B = Vec3::Constant(1e300), hi_B = Vec3::Constant(-1e300);
+    for (int c = 0; c < 8; ++c) {
+      const Vec3 corner((c & 1) ? o.shape.aabb_max.x() : o.shape.aabb_min.x(),
+                        (c & 2) ? o.shape.aabb_max.y() : o.shape.aabb_min.y(),
+                        (c & 4) ? o.shape.aabb_max.z() : o.shape.aabb_min.z());
+      const Vec3 b = r.transpose() * (corner - pose.position);
+      lo_B = lo_B.cwiseMin(b);
+      hi_B = hi_B.cwiseMax(b);
+    }
+    lo_B.array() -= kPoseMargin_m;
+    hi_B.array() += kPoseMargin_m;
     int hint = -1;
-    for (const Vec3& p : body.samples) {
+    for (const Vec3& s : samples_B) {
+      if ((s.array() < lo_B.array()).any() || (s.array() > hi_B.array()).any()) continue;
+      const Vec3 p = pose.position + r * s;
       if ((p.array() < o.shape.aabb_min.array()).any() ||
           (p.array() > o.shape.aabb_max.array()).any()) {
         continue;
@@ -243,9 +278,17 @@ void ObstacleContacts(const engine::ConvexShape& body, const ObstacleField& fiel
       k.obstacle_tag = o.tag;
       cand.push_back(k);
     }
-    // obstacle samples inside the body
+    // Obstacle samples inside the body: runs of consecutive samples whose box misses the body's
+    // are skipped whole (none of their samples would pass the box test), the others sample by
+    // sample in the same order.
     hint = -1;
-    for (const Vec3& q : o.shape.samples) {
+    for (const SampleRun& run : o.sample_runs) {
+      if ((run.hi.array() < body.aabb_min.array()).any() ||
+          (run.lo.array() > body.aabb_max.array()).any()) {
+        continue;
+      }
+      for (int i = run.begin; i < run.end; ++i) {
+      const Vec3& q = o.shape.samples[static_cast<size_t>(i)];
       if ((q.array() < body.aabb_min.array()).any() || (q.array() > body.aabb_max.array()).any()) {
         continue;
       }
@@ -260,6 +303,7 @@ void ObstacleContacts(const engine::ConvexShape& body, const ObstacleField& fiel
       k.friction = mu;
       k.obstacle_tag = o.tag;
       cand.push_back(k);
+      }
     }
     ReduceContacts(cand, max_per_obstacle, &scratch->taken, out);
   }

@@ -73,6 +73,22 @@ ObstacleField::ObstacleField(const TaskSpec& task, const Terrain& terrain) {
                             kTreeTagOffset + static_cast<int>(j), kObstacleFriction});
     }
   }
+  // Runs of 32 samples with their boxes (ObstacleContacts skips the runs far from a body).
+  constexpr int kRun = 32;
+  for (Obstacle& o : obstacles_) {
+    const int n = static_cast<int>(o.shape.samples.size());
+    for (int b = 0; b < n; b += kRun) {
+      SampleRun run;
+      run.begin = b;
+      run.end = std::min(n, b + kRun);
+      run.lo = run.hi = o.shape.samples[static_cast<size_t>(b)];
+      for (int i = b; i < run.end; ++i) {
+        run.lo = run.lo.cwiseMin(o.shape.samples[static_cast<size_t>(i)]);
+        run.hi = run.hi.cwiseMax(o.shape.samples[static_cast<size_t>(i)]);
+      }
+      o.sample_runs.push_back(run);
+    }
+  }
   // Broadphase grid over the world (obstacles may reach beyond its edge: clamped into it).
   cell_m_ = kCell_m * task.scale;
   x0_ = -0.5 * task.size_x_m;

@@ -589,9 +589,13 @@ void Vehicle::AddBodyContacts() {
     if (obstacles_ != nullptr) {
       obstacles_->Overlapping(b.posed.aabb_min, b.posed.aabb_max, &b.scratch.obstacles);
       if (!b.scratch.obstacles.empty()) {
-        b.for_obstacles_B[k].TransformInto(reference, &b.posed);
-        terrain::ObstacleContacts(b.posed, *obstacles_, kBodyFriction,
-                                  kMaxObstacleContactsPerPiece, &b.scratch, &b.contacts);
+        // the samples (thousands near a boulder) only once a face test leaves a touch possible
+        b.for_obstacles_B[k].TransformInto(reference, &b.posed, /*with_samples=*/false);
+        if (terrain::MayTouchAnObstacle(b.posed, *obstacles_, &b.scratch)) {
+          terrain::ObstacleContacts(b.posed, b.for_obstacles_B[k].samples, reference,
+                                    *obstacles_, kBodyFriction, kMaxObstacleContactsPerPiece,
+                                    &b.scratch, &b.contacts);
+        }
       }
     }
   }

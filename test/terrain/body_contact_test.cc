@@ -13,6 +13,7 @@
 #include "support/worlds.h"
 #include "vb/engine/convex_shape.h"
 #include "vb/engine/error.h"
+#include "vb/terrain/obstacle_shape.h"
 
 namespace vb::terrain {
 namespace {
@@ -316,6 +317,70 @@ TEST(BodyContactTest, LazilyPosedSamplesGiveBitIdenticalContacts) {
     }
   }
   EXPECT_GT(touching, 300);  // the poses do exercise contacts
+}
+
+// The obstacle query with the body's samples posed lazily (only those near an obstacle's box)
+// and the obstacles' samples skipped by runs gives the contacts of posing every sample first
+// and testing every obstacle sample, bit for bit, in the same order: boulders of several sizes
+// and a trunk, a chassis-like piece at 4000 random poses around and into them.
+TEST(BodyContactTest, LazilyPosedSamplesAndSampleRunsGiveBitIdenticalObstacleContacts) {
+  test::UniformLcg uniform(4242);
+  TaskSpec task = test::PlaneTask(64.0);
+  task.generator_seed = 11;
+  for (int i = 0; i < 9; ++i)
+    task.rocks.push_back({-6.0 + 6.0 * (i % 3), -6.0 + 6.0 * (i / 3), 0.4 + 0.2 * i});
+  task.trees.push_back({3.0, 3.0});
+  task.rock_shape.kind = ObstacleShapeKind::kBoulder;
+  AssignShapeSeeds(&task);
+  const Terrain ground(task);
+  const ObstacleField field(task, ground);
+  for (const Obstacle& o : field.obstacles()) {  // the runs cover the samples in order
+    int next = 0;
+    for (const SampleRun& run : o.sample_runs) {
+      ASSERT_EQ(run.begin, next);
+      next = run.end;
+    }
+    ASSERT_EQ(next, static_cast<int>(o.shape.samples.size()));
+  }
+  const engine::ConvexShape local =
+      engine::MakeConvexHull({Vec3(2.1, 0.75, 0.0), Vec3(2.1, -0.75, 0.0), Vec3(2.3, 0.75, 0.44),
+                              Vec3(2.3, -0.75, 0.44), Vec3(2.3, 0.75, 0.55), Vec3(2.3, -0.75, 0.55),
+                              Vec3(-2.3, 0.75, 0.0), Vec3(-2.3, -0.75, 0.0), Vec3(-2.3, 0.75, 0.55),
+                              Vec3(-2.3, -0.75, 0.55)},
+                             0.05, "belly");
+  // the reference: every obstacle sample tested (runs of one sample skip nothing the per-sample
+  // test keeps), every body sample posed (below)
+  ObstacleField whole = field;
+  for (size_t i = 0; i < whole.obstacles().size(); ++i) {
+    auto& o = const_cast<Obstacle&>(whole.obstacles()[i]);  // a test's own copy
+    o.sample_runs.clear();
+    for (int q = 0; q < static_cast<int>(o.shape.samples.size()); ++q)
+      o.sample_runs.push_back({o.shape.samples[static_cast<size_t>(q)],
+                               o.shape.samples[static_cast<size_t>(q)], q, q + 1});
+  }
+  ContactScratch scratch;
+  std::vector<BodyContact> all, lazy;
+  engine::ConvexShape posed, posed_without_samples;
+  int touching = 0;
+  for (int k = 0; k < 4000; ++k) {
+    const Pose pose = RandomPose(uniform, 0.0, 1.5);
+    local.TransformInto(pose, &posed);
+    local.TransformInto(pose, &posed_without_samples, /*with_samples=*/false);
+    all.clear();
+    lazy.clear();
+    ObstacleContacts(posed, whole, 0.8, 8, &scratch, &all);
+    ObstacleContacts(posed_without_samples, local.samples, pose, field, 0.8, 8, &scratch, &lazy);
+    if (!all.empty()) ++touching;
+    ASSERT_EQ(all.size(), lazy.size()) << "pose " << k;
+    for (size_t i = 0; i < all.size(); ++i) {
+      EXPECT_EQ(std::memcmp(all[i].point_W.data(), lazy[i].point_W.data(), 3 * sizeof(double)), 0);
+      EXPECT_EQ(std::memcmp(all[i].normal_W.data(), lazy[i].normal_W.data(), 3 * sizeof(double)),
+                0);
+      EXPECT_EQ(std::memcmp(&all[i].depth_m, &lazy[i].depth_m, sizeof(double)), 0);
+      EXPECT_EQ(all[i].obstacle_tag, lazy[i].obstacle_tag);
+    }
+  }
+  EXPECT_GT(touching, 400);  // the poses do exercise contacts
 }
 
 }  // namespace

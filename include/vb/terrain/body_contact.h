@@ -50,6 +50,9 @@ struct ContactScratch {
 // queries skip such a pair before their sample tests. Far above the rounding of posed shapes, so
 // a skipped pair is one the full tests would have found no contact in.
 constexpr double kSeparatedBy_m = 1e-6;
+// A body sample further than this outside an obstacle's box (in the body's frame) is not posed:
+// far above the rounding of posing it, so it is one the world-frame box test would have dropped.
+constexpr double kPoseMargin_m = 1e-6;
 
 // The highest the ground gets under the box [lo, hi] (grid vertices in its footprint and the
 // surface at its centre): a body entirely above it cannot touch the ground.
@@ -86,6 +89,20 @@ void GroundContacts(const engine::ConvexShape& body_W, const std::vector<Vec3>& 
 void ObstacleContacts(const engine::ConvexShape& body_W, const ObstacleField& field,
                       double body_friction, int max_per_obstacle, ContactScratch* scratch,
                       std::vector<BodyContact>* out);
+// The same with the body's samples given in its own frame (samples_B, posed by `pose` as
+// ConvexShape::TransformSamplesInto does, only those near an obstacle); body_W's own samples
+// are not read. The same contacts, bit for bit, as posing them all first.
+void ObstacleContacts(const engine::ConvexShape& body_W, const std::vector<Vec3>& samples_B,
+                      const Pose& pose, const ObstacleField& field, double body_friction,
+                      int max_per_obstacle, ContactScratch* scratch,
+                      std::vector<BodyContact>* out);
+
+// Whether ObstacleContacts(body_W, field, ...) can find a contact: an obstacle whose box overlaps
+// the body's and that no face of either separates from the other (ObstacleContacts' first test).
+// It reads the body's vertices, faces and box only, so the caller can pose the body's samples
+// after it says yes.
+bool MayTouchAnObstacle(const engine::ConvexShape& body_W, const ObstacleField& field,
+                        ContactScratch* scratch);
 
 // A wheel (cylinder: centre, unit spin axis, radius, half width) against the obstacles.
 void WheelObstacleContacts(const Vec3& center_W, const Vec3& axis_W, double radius_m,

@@ -17,10 +17,18 @@ namespace vb::terrain {
 // (Chrono's NSC rule, as the tires on the ground).
 constexpr double kObstacleFriction = 0.8;
 
+// A run of consecutive contact samples of a shape and their bounding box (samples lie along
+// edges, so a run's box is tight): a query far from the box skips the run whole.
+struct SampleRun {
+  Vec3 lo = Vec3::Zero(), hi = Vec3::Zero();
+  int begin = 0, end = 0;  // samples [begin, end)
+};
+
 struct Obstacle {
   engine::ConvexShape shape;   // world frame
   int tag = -1;
   double friction = kObstacleFriction;
+  std::vector<SampleRun> sample_runs;  // covering shape.samples in order (ObstacleField makes them)
 };
 
 class ObstacleField {
