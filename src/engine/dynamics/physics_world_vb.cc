@@ -107,6 +107,7 @@ struct PhysicsWorld::Impl {
     Vec3 pivot = Vec3::Zero();
     Vec3 axis_W = Vec3::UnitY();
     Pose pose;                  // p and rot as the read-out gives them
+    bool moved = false;         // its joint angle changed since its kinematics were computed
     // read-out velocities (prescribed rates included), world frame
     Vec3 w_ro = Vec3::Zero(), v_ro = Vec3::Zero();
     // scratch of the step: velocities without prescribed rates, bias accelerations
@@ -121,7 +122,9 @@ struct PhysicsWorld::Impl {
     Vec3 force_W = Vec3::Zero(), torque_W = Vec3::Zero();
     std::vector<Link> links;
     int n = 6;  // generalised velocities
-    mutable bool kin_stale = true, vel_stale = true;
+    // kinematics to recompute: some link's (kin_stale), every link's (base_moved; else only the
+    // links marked `moved` and their descendants: a steering angle moves its knuckle and wheel)
+    mutable bool kin_stale = true, vel_stale = true, base_moved = true;
     mutable Mat3 R = Mat3::Identity();
     bool any_prescribed_rate = false;
     // scratch of the step
@@ -148,12 +151,17 @@ struct PhysicsWorld::Impl {
   }
 
   // Link rotations, COMs, pivots and axes from the base pose and the joint coordinates.
+  // Links whose inputs did not change keep their values: recomputing them would give the same.
   static void Kinematics(const Body& cb) {
     if (!cb.kin_stale) return;
     Body& b = const_cast<Body&>(cb);
-    b.R = b.rot.toRotationMatrix();
+    const bool all = b.base_moved;
+    if (all) b.R = b.rot.toRotationMatrix();
     for (Link& l : b.links) {
       const bool base_parent = l.parent < 0;
+      if (!all && !l.moved && (base_parent || !b.links[static_cast<size_t>(l.parent)].moved))
+        continue;
+      l.moved = true;  // its descendants follow
       const Quat& rot_p = base_parent ? b.rot : b.links[static_cast<size_t>(l.parent)].rot;
       const Mat3& R_p = base_parent ? b.R : b.links[static_cast<size_t>(l.parent)].R;
       const Vec3& p_p = base_parent ? b.pos : b.links[static_cast<size_t>(l.parent)].p;
@@ -171,7 +179,8 @@ struct PhysicsWorld::Impl {
       l.pose.position = l.p;
       l.pose.rotation = l.rot.normalized();
     }
-    b.kin_stale = false;
+    for (Link& l : b.links) l.moved = false;
+    b.kin_stale = b.base_moved = false;
     b.vel_stale = true;
   }
 
@@ -562,7 +571,7 @@ void PhysicsWorld::Impl::StepBody(Body& b, double dt,
     l.qdot = u[l.dof];
     l.q += dt * l.qdot;
   }
-  b.kin_stale = true;
+  b.kin_stale = b.base_moved = true;
   b.vel_stale = true;
   b.force_W.setZero();
   b.torque_W.setZero();
@@ -624,7 +633,7 @@ void PhysicsWorld::SetJointPosition(MultiBodyId id, int link, double q) {
   Impl::Link& l = b.links[static_cast<size_t>(link)];
   l.q = q;
   if (l.joint == JointType::kPrescribedRevolute) l.qdot = 0.0;
-  b.kin_stale = true;
+  b.kin_stale = b.base_moved = true;
 }
 
 void PhysicsWorld::SetPrescribedJoint(MultiBodyId id, int link, double q, double qdot) {
@@ -633,7 +642,7 @@ void PhysicsWorld::SetPrescribedJoint(MultiBodyId id, int link, double q, double
   Impl::Link& l = b.links[static_cast<size_t>(link)];
   VB_DEMAND(l.joint == JointType::kPrescribedRevolute);
   if (q == l.q && qdot == l.qdot) return;
-  if (q != l.q) b.kin_stale = true;
+  if (q != l.q) b.kin_stale = l.moved = true;
   l.q = q;
   l.qdot = qdot;
   b.vel_stale = true;
@@ -811,7 +820,7 @@ void PhysicsWorld::SetState(MultiBodyId id, const MultiBodyState& s) {
     l.torque_W.setZero();
     l.joint_force = 0.0;
   }
-  b.kin_stale = true;
+  b.kin_stale = b.base_moved = true;
   b.vel_stale = true;
 }
 
