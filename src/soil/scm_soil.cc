@@ -9,7 +9,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <string>
+#include <type_traits>
 #include <utility>
 
 #include "vb/engine/error.h"
@@ -57,13 +59,16 @@ struct Node {
   Vec3 shear_m = Vec3::Zero();// Janosi shear displacement (world vector, in the contact plane)
   float cos_slope = 1.0f;     // z of the undeformed terrain normal
   int8_t slot = -1;           // soil slot (SoilSlot), -1: rigid or outside the world
+  uint8_t local = 0;          // index in its tile: row * kTileSize + column (TileOf)
+  bool interior = false;      // its four neighbours lie in its tile and inside the world
+                              // (column and row 1..kTileSize - 2, i < i_max, j < j_max)
   int32_t contact_step = -2;  // last step with wheel contact
   int32_t mark_step = -2;     // scratch stamp (rim membership in EndStep)
   int32_t queue_stamp = -1;   // scratch stamp (erosion work list membership)
   int32_t tile = -1;          // allocation index of the node's tile (in the struct's padding)
 };
 
-static_assert(sizeof(Node) == 80, "the tile index lives in Node's padding");
+static_assert(sizeof(Node) == 80, "the tile index, local index and interior flag live in Node's padding");
 
 // Advances a contact node's Janosi shear displacement by one step of the surface's slip: restarted
 // when the node (or its block) was not in contact the step before, moved by the velocity's part
@@ -91,6 +96,13 @@ struct Tile {
   // rounding, ~1e-17 m, far inside kScanMargin_m). -1e300: no deformable node in the row.
   double row_top_m[kTileSize];
 };
+
+static_assert(std::is_standard_layout_v<Tile> && offsetof(Tile, nodes) == 0,
+              "TileOf: a tile's address is its first node's");
+
+// The tile holding node n: its nodes array starts n->local nodes before n (no look-up through
+// the tile list).
+inline Tile* TileOf(Node* n) { return reinterpret_cast<Tile*>(n - n->local); }
 
 // The node's current level: level0 - plastic / cos_slope (sink_m holds the quotient).
 double Level(const Node& n) { return n.level0_m - n.sink_m; }
@@ -226,8 +238,7 @@ struct ScmSoil::Impl {
     n->level0_m += dh;
     if (dh > 0.0) {
       max_raise_m = std::max(max_raise_m, n->level0_m - n->base_m);
-      Tile& t = *tiles[static_cast<size_t>(n->tile)];
-      double& top = t.row_top_m[(n - t.nodes) >> kTileBits];
+      double& top = TileOf(n)->row_top_m[n->local >> kTileBits];
       top = std::max(top, n->level0_m);
     }
   }
@@ -345,7 +356,9 @@ struct ScmSoil::Impl {
       for (int a = 0; a < kTileSize; ++a) {
         Node& n = tile->nodes[b * kTileSize + a];
         n.tile = id;
+        n.local = static_cast<uint8_t>(b * kTileSize + a);
         const int i = i_min + tx * kTileSize + a, j = j_min + ty * kTileSize + b;
+        n.interior = a != 0 && a != kTileMask && b != 0 && b != kTileMask && i < i_max && j < j_max;
         if (i > i_max || j > j_max) continue;  // beyond the world edge: stays rigid
         const terrain::SurfacePoint sp = terrain.Query(i * dx, j * dx);
         n.base_m = n.level0_m = sp.height_m;
@@ -427,14 +440,15 @@ struct ScmSoil::Impl {
   // own path, which may allocate.
   [[gnu::always_inline]] bool FourNeighbours(Node* n, int i, int j, const GridBounds& b,
                                              Node* nb[4]) const {
-    const int li = (i - b.i_min) & kTileMask, lj = (j - b.j_min) & kTileMask;
-    if (li != 0 && li != kTileMask && lj != 0 && lj != kTileMask && i < b.i_max && j < b.j_max) {
+    // n->interior: the test below, precomputed at allocation (i and j are n's)
+    if (n->interior) {
       nb[0] = n + 1;
       nb[1] = n - 1;
       nb[2] = n + kTileSize;
       nb[3] = n - kTileSize;
       return true;
     }
+    const int li = (i - b.i_min) & kTileMask, lj = (j - b.j_min) & kTileMask;
     nb[0] = li != kTileMask && i < b.i_max ? n + 1 : Peek(i + 1, j);
     nb[1] = li != 0 ? n - 1 : Peek(i - 1, j);
     nb[2] = lj != kTileMask && j < b.j_max ? n + kTileSize : Peek(i, j + 1);
@@ -1252,7 +1266,6 @@ void ScmSoil::Impl::Erode(const BulldozingParams& bp) {
     const int32_t cur_step = s.cur_step;
     const int propagations = s.propagations;
     double max_raise = s.max_raise;
-    std::unique_ptr<Tile>* tile_ptrs = tiles.data();
     const Work* const work = active_buf.data();
     for (size_t k = 0; k < n_active; ++k) {
       const Work& w = work[k];
@@ -1267,7 +1280,6 @@ void ScmSoil::Impl::Erode(const BulldozingParams& bp) {
         ErodeVisit(w, s);
         max_raise = s.max_raise;
         n_out = s.n_out;
-        tile_ptrs = tiles.data();
         continue;
       }
       // n's level0 and sinkage in registers: n's own writes below are these, and no neighbour
@@ -1285,23 +1297,20 @@ void ScmSoil::Impl::Erode(const BulldozingParams& bp) {
         const double q = 0.5 * (std::abs(dy) - threshold) / 4.0;
         const int nj = wj + kDj[e];
         Node* up;
-        int up_j;
         if (dy > 0.0) {
           level0_n += -q;
           n->level0_m = level0_n;
           nb->level0_m += q;
           up = nb;
-          up_j = nj;
         } else {
           level0_n += q;
           n->level0_m = level0_n;
           nb->level0_m += -q;
           up = n;
-          up_j = wj;
         }
         const double up_level0 = up->level0_m;
         max_raise = std::max(max_raise, up_level0 - up->base_m);
-        double& top = tile_ptrs[up->tile]->row_top_m[(up_j - bounds.j_min) & kTileMask];
+        double& top = TileOf(up)->row_top_m[up->local >> kTileBits];
         top = std::max(top, up_level0);
         level_n = level0_n - sink_n;
         if (q > kErosionSettled_m) {
@@ -1343,8 +1352,7 @@ __attribute__((noinline)) void ScmSoil::Impl::ErodeVisit(const Work& w, ErodePas
   auto raise_up = [this, &s](Node* nd, double dh) {
     nd->level0_m += dh;
     s.max_raise = std::max(s.max_raise, nd->level0_m - nd->base_m);
-    Tile& t = *tiles[static_cast<size_t>(nd->tile)];
-    double& top = t.row_top_m[(nd - t.nodes) >> kTileBits];
+    double& top = TileOf(nd)->row_top_m[nd->local >> kTileBits];
     top = std::max(top, nd->level0_m);
   };
   double level_n = Level(*n);
