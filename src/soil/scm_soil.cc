@@ -1271,9 +1271,10 @@ void ScmSoil::Impl::Erode(const BulldozingParams& bp) {
       const Work& w = work[k];
       Node* const n = w.node;
       if (n->slot < 0 || n->contact_step == cur_step) continue;
-      const int wi = w.i, wj = w.j, ring = w.ring;
+      // w's grid position and ring read where they are used (the work lists' entries are
+      // only needed to queue a node, which few edges do)
       Node* nb[4];
-      if (!FourNeighbours(n, wi, wj, bounds, nb)) {
+      if (!FourNeighbours(n, w.i, w.j, bounds, nb)) {
         s.max_raise = max_raise;
         s.out = out;
         s.n_out = n_out;
@@ -1295,7 +1296,6 @@ void ScmSoil::Impl::Erode(const BulldozingParams& bp) {
         if (std::abs(dy) <= threshold) return;
         if (nb->slot < 0 || nb->contact_step == cur_step) return;
         const double q = 0.5 * (std::abs(dy) - threshold) / 4.0;
-        const int nj = wj + kDj[e];
         Node* up;
         if (dy > 0.0) {
           level0_n += -q;
@@ -1317,11 +1317,11 @@ void ScmSoil::Impl::Erode(const BulldozingParams& bp) {
           if (!n_queued) {
             n_queued = true;
             n->queue_stamp = stamp;
-            out[n_out++] = {wi, wj, ring, n};
+            out[n_out++] = {w.i, w.j, w.ring, n};
           }
-          if (ring < propagations && nb->queue_stamp != stamp) {
+          if (w.ring < propagations && nb->queue_stamp != stamp) {
             nb->queue_stamp = stamp;
-            out[n_out++] = {wi + kDi[e], nj, ring + 1, nb};
+            out[n_out++] = {w.i + kDi[e], w.j + kDj[e], w.ring + 1, nb};
           }
         }
       };
