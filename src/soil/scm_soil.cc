@@ -60,15 +60,23 @@ struct Node {
   float cos_slope = 1.0f;     // z of the undeformed terrain normal
   int8_t slot = -1;           // soil slot (SoilSlot), -1: rigid or outside the world
   uint8_t local = 0;          // index in its tile: row * kTileSize + column (TileOf)
-  bool interior = false;      // its four neighbours lie in its tile and inside the world
-                              // (column and row 1..kTileSize - 2, i < i_max, j < j_max)
+  uint8_t links = 0xff;       // where its 4-neighbours are, 2 bits per direction e (kDi, kDj;
+                              // bits 2e, 2e + 1): kInTile, kAdjacentTile or kOutside (0: all
+                              // four in its tile)
   int32_t contact_step = -2;  // last step with wheel contact
   int32_t mark_step = -2;     // scratch stamp (rim membership in EndStep)
   int32_t queue_stamp = -1;   // scratch stamp (erosion work list membership)
   int32_t tile = -1;          // allocation index of the node's tile (in the struct's padding)
 };
 
-static_assert(sizeof(Node) == 80, "the tile index, local index and interior flag live in Node's padding");
+static_assert(sizeof(Node) == 80, "the tile index, local index and links live in Node's padding");
+
+// Node::links, per direction: the neighbour is in the node's tile (pointer offset kInTileStep),
+// in the adjacent tile that way (Tile::adj; kCrossStep from the node's local index), or outside
+// the world.
+constexpr unsigned kInTile = 0, kAdjacentTile = 1, kOutside = 2;
+constexpr int kInTileStep[4] = {1, -1, kTileSize, -kTileSize};
+constexpr int kCrossStep[4] = {-kTileMask, kTileMask, -kTileMask * kTileSize, kTileMask * kTileSize};
 
 // Advances a contact node's Janosi shear displacement by one step of the surface's slip: restarted
 // when the node (or its block) was not in contact the step before, moved by the velocity's part
@@ -95,6 +103,10 @@ struct Tile {
   // of them has had; levels only sink below level0: a plastic sinkage is never negative but by
   // rounding, ~1e-17 m, far inside kScanMargin_m). -1e300: no deformable node in the row.
   double row_top_m[kTileSize];
+  // The allocated tiles beside this one in the directions +i, -i, +j, -j (kDi, kDj), nullptr
+  // where none is (not allocated, or outside the world). Kept by Allocate; rebuilt by Restore
+  // (a snapshot's copies hold the pointers of the soil they were taken from).
+  Tile* adj[4] = {nullptr, nullptr, nullptr, nullptr};
 };
 
 static_assert(std::is_standard_layout_v<Tile> && offsetof(Tile, nodes) == 0,
@@ -358,8 +370,15 @@ struct ScmSoil::Impl {
         n.tile = id;
         n.local = static_cast<uint8_t>(b * kTileSize + a);
         const int i = i_min + tx * kTileSize + a, j = j_min + ty * kTileSize + b;
-        n.interior = a != 0 && a != kTileMask && b != 0 && b != kTileMask && i < i_max && j < j_max;
-        if (i > i_max || j > j_max) continue;  // beyond the world edge: stays rigid
+        if (i > i_max || j > j_max) continue;  // beyond the world edge: stays rigid (links 0xff)
+        // Peek's cases: +i in the tile if a < kTileMask and i < i_max, in the next tile if
+        // a == kTileMask and i < i_max, else outside; -i in the tile if a > 0, else the tile
+        // before (none at the world's first column); the same along j.
+        const unsigned pi = i < i_max ? (a != kTileMask ? kInTile : kAdjacentTile) : kOutside;
+        const unsigned mi = a != 0 ? kInTile : kAdjacentTile;
+        const unsigned pj = j < j_max ? (b != kTileMask ? kInTile : kAdjacentTile) : kOutside;
+        const unsigned mj = b != 0 ? kInTile : kAdjacentTile;
+        n.links = static_cast<uint8_t>(pi | mi << 2 | pj << 4 | mj << 6);
         const terrain::SurfacePoint sp = terrain.Query(i * dx, j * dx);
         n.base_m = n.level0_m = sp.height_m;
         n.cos_slope = static_cast<float>(std::max(0.05, sp.normal_W.z()));
@@ -367,9 +386,24 @@ struct ScmSoil::Impl {
         if (n.slot >= 0) tile->row_top_m[b] = std::max(tile->row_top_m[b], n.level0_m);
       }
     }
+    Link(tile.get(), tx, ty);
     tiles.push_back(std::move(tile));
     ++stats.tiles;
     return static_cast<int32_t>(tiles.size() - 1);
+  }
+
+  // Tile (tx, ty) and its allocated neighbours point at each other (Tile::adj).
+  void Link(Tile* tile, int tx, int ty) {
+    const int ntx[4] = {tx + 1, tx - 1, tx, tx}, nty[4] = {ty, ty, ty + 1, ty - 1};
+    for (int e = 0; e < 4; ++e) {
+      tile->adj[e] = nullptr;
+      if (ntx[e] < 0 || ntx[e] >= tiles_x || nty[e] < 0 || nty[e] >= tiles_y) continue;
+      const int32_t idx = tile_index[static_cast<size_t>(nty[e]) * tiles_x + ntx[e]];
+      if (idx < 0) continue;
+      Tile* other = tiles[static_cast<size_t>(idx)].get();
+      tile->adj[e] = other;
+      other->adj[e ^ 1] = tile;   // the opposite direction: +i <-> -i, +j <-> -j
+    }
   }
 
   double LevelAt(int i, int j) {
@@ -427,33 +461,35 @@ struct ScmSoil::Impl {
     if (idx < 0) return nullptr;
     return &tiles[static_cast<size_t>(idx)]->nodes[(lj & kTileMask) * kTileSize + (li & kTileMask)];
   }
-  // The grid bounds as the hot loops keep them, in locals (a node write could change the members
-  // as far as the compiler knows).
-  struct GridBounds {
-    int i_min, j_min, i_max, j_max;
-  };
-  GridBounds Bounds() const { return {i_min, j_min, i_max, j_max}; }
-  // The 4-neighbours of node n at (i, j), in Neighbours' order (+i, -i, +j, -j: kDi, kDj), for the
-  // rim and erosion loops: no call on the way when n lies inside its tile (nearly always), so the
-  // callers' doubles stay in registers; at a tile's border they come from Peek. False if one of
-  // them does not exist (outside the world, or its tile not allocated): the caller then takes its
-  // own path, which may allocate.
-  [[gnu::always_inline]] bool FourNeighbours(Node* n, int i, int j, const GridBounds& b,
-                                             Node* nb[4]) const {
-    // n->interior: the test below, precomputed at allocation (i and j are n's)
-    if (n->interior) {
+  // The 4-neighbours of node n, in Neighbours' order (+i, -i, +j, -j: kDi, kDj), for the rim and
+  // erosion loops: the nodes Peek finds (inside the world, their tile allocated), from n's links
+  // without a look-up: in n's tile by pointer offset (nearly always all four), across a tile
+  // border through the adjacent tile's pointer. No call on the way, so the callers' doubles stay
+  // in registers. False if one of them does not exist (outside the world, or its tile not
+  // allocated): the caller then takes its own path, which may allocate.
+  [[gnu::always_inline]] static bool FourNeighbours(Node* n, Node* nb[4]) {
+    const unsigned links = n->links;
+    if (links == 0) {
       nb[0] = n + 1;
       nb[1] = n - 1;
       nb[2] = n + kTileSize;
       nb[3] = n - kTileSize;
       return true;
     }
-    const int li = (i - b.i_min) & kTileMask, lj = (j - b.j_min) & kTileMask;
-    nb[0] = li != kTileMask && i < b.i_max ? n + 1 : Peek(i + 1, j);
-    nb[1] = li != 0 ? n - 1 : Peek(i - 1, j);
-    nb[2] = lj != kTileMask && j < b.j_max ? n + kTileSize : Peek(i, j + 1);
-    nb[3] = lj != 0 ? n - kTileSize : Peek(i, j - 1);
-    return nb[0] != nullptr && nb[1] != nullptr && nb[2] != nullptr && nb[3] != nullptr;
+    const Tile* tile = TileOf(n);
+    bool all = true;
+    for (int e = 0; e < 4; ++e) {
+      const unsigned where = (links >> (2 * e)) & 3u;
+      Node* p = nullptr;
+      if (where == kInTile) {
+        p = n + kInTileStep[e];
+      } else if (where == kAdjacentTile && tile->adj[e] != nullptr) {
+        p = &tile->adj[e]->nodes[n->local + kCrossStep[e]];
+      }
+      nb[e] = p;
+      all = all && p != nullptr;
+    }
+    return all;
   }
   std::vector<double> room;
   std::vector<char> full_scratch;
@@ -1182,7 +1218,6 @@ void ScmSoil::EndStep(double /*dt*/) {
     Impl::Work* const rim = m.rim.data();
     size_t n_rim = 0;
     const int32_t step = m.step;   // a local: the node writes below cannot change it
-    const Impl::GridBounds bounds = m.Bounds();
     for (const Impl::Patch& patch : m.patches) {
       // Rim: untouched deformable 4-neighbours of this patch's contact nodes, in contact order.
       double volume = 0.0;  // displaced height summed over nodes (all cells have equal area)
@@ -1197,7 +1232,7 @@ void ScmSoil::EndStep(double /*dt*/) {
         // which allocates the missing tiles in Neighbours' order (not inline: the loop has no
         // call on the way)
         Node* nb[4];
-        if (!m.FourNeighbours(n, ci, cj, bounds, nb)) {
+        if (!m.FourNeighbours(n, nb)) {
           n_rim = m.RimOf(ct, step, rim, n_rim);
           continue;
         }
@@ -1251,7 +1286,6 @@ void ScmSoil::Impl::Erode(const BulldozingParams& bp) {
   // A local for the maximum raise: the node writes below (doubles and int32 stamps) could change
   // the member as far as the compiler knows, which would reload and store it at every raise.
   s.max_raise = max_raise_m;   // written back after the passes (max is exact in any order)
-  const GridBounds bounds = Bounds();
   for (int pass = 0; pass < bp.erosion_iterations && n_active > 0; ++pass) {
     const int32_t stamp = s.stamp = ++queue_stamp;
     // a visit adds at most its node and its four neighbours, each once per pass
@@ -1274,7 +1308,7 @@ void ScmSoil::Impl::Erode(const BulldozingParams& bp) {
       // w's grid position and ring read where they are used (the work lists' entries are
       // only needed to queue a node, which few edges do)
       Node* nb[4];
-      if (!FourNeighbours(n, w.i, w.j, bounds, nb)) {
+      if (!FourNeighbours(n, nb)) {
         s.max_raise = max_raise;
         s.out = out;
         s.n_out = n_out;
@@ -1422,6 +1456,33 @@ const ScmStats& ScmSoil::stats() const {
   return impl_->stats;
 }
 
+bool ScmSoil::NeighbourLinksMatchLookUps() const {
+  const Impl& m = *impl_;
+  for (int ty = 0; ty < m.tiles_y; ++ty) {
+    for (int tx = 0; tx < m.tiles_x; ++tx) {
+      const int32_t idx = m.tile_index[static_cast<size_t>(ty) * m.tiles_x + tx];
+      if (idx < 0) continue;
+      Tile& tile = *m.tiles[static_cast<size_t>(idx)];
+      for (int b = 0; b < kTileSize; ++b) {
+        for (int a = 0; a < kTileSize; ++a) {
+          const int i = m.i_min + tx * kTileSize + a, j = m.j_min + ty * kTileSize + b;
+          if (i > m.i_max || j > m.j_max) continue;
+          Node* nb[4];
+          const bool all = Impl::FourNeighbours(&tile.nodes[b * kTileSize + a], nb);
+          bool all_looked_up = true;
+          for (int e = 0; e < 4; ++e) {
+            const Node* looked_up = m.Peek(i + kDi[e], j + kDj[e]);
+            if (nb[e] != looked_up) return false;
+            all_looked_up = all_looked_up && looked_up != nullptr;
+          }
+          if (all != all_looked_up) return false;
+        }
+      }
+    }
+  }
+  return true;
+}
+
 // Snapshot: everything that carries from one step to the next. The per-step scratch (this step's
 // contacts, patches, hits, the rim list) is empty between steps.
 struct SoilSnapshot::Data {
@@ -1473,6 +1534,13 @@ void ScmSoil::Restore(const SoilSnapshot& snapshot) {
     }
   }
   m.tile_index = d.tile_index;
+  // the tiles' neighbour pointers into this soil's tiles (the copies hold the snapshot's)
+  for (int ty = 0; ty < m.tiles_y; ++ty) {
+    for (int tx = 0; tx < m.tiles_x; ++tx) {
+      const int32_t idx = m.tile_index[static_cast<size_t>(ty) * m.tiles_x + tx];
+      if (idx >= 0) m.Link(m.tiles[static_cast<size_t>(idx)].get(), tx, ty);
+    }
+  }
   m.step = d.step;
   m.stats = d.stats;
   m.max_raise_m = d.max_raise_m;
