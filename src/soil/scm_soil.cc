@@ -360,7 +360,9 @@ struct ScmSoil::Impl {
     return true;
   }
 
-  int32_t Allocate(int tx, int ty) {
+  // Not inline: once per tile, and the look-ups that call it (AtInRow, At) stay small enough to
+  // be inlined into the scans.
+  __attribute__((noinline)) int32_t Allocate(int tx, int ty) {
     auto tile = std::make_unique<Tile>();
     const auto id = static_cast<int32_t>(tiles.size());
     for (int b = 0; b < kTileSize; ++b) {
