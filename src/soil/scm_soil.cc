@@ -64,8 +64,7 @@ struct Node {
                               // bits 2e, 2e + 1): kInTile, kAdjacentTile or kOutside (0: all
                               // four in its tile)
   int32_t contact_step = -2;  // last step with wheel contact
-  int32_t mark_step = -2;     // scratch stamp (rim membership in EndStep)
-  int32_t queue_stamp = -1;   // scratch stamp (erosion work list membership)
+  int32_t queue_stamp = -1;   // scratch stamp (rim and erosion work list membership)
   int32_t tile = -1;          // allocation index of the node's tile (in the struct's padding)
 };
 
@@ -289,11 +288,13 @@ struct ScmSoil::Impl {
     Node* node;   // the node at (i, j) (tiles never move while they exist; Restore looks
                   // pending's up again in the restored tiles)
   };
-  std::vector<Work> rim, pending;
-  size_t n_rim = 0;   // this step's rim: rim[0, n_rim) (rim is a buffer written by index)
+  std::vector<Work> pending;
+  size_t n_rim = 0;   // this step's rim: active_buf[0, n_rim) (see active_buf)
   int32_t queue_stamp = 0;
   // The erosion passes' work lists (this pass's, the next pass's): buffers written by index
-  // (sized before a pass for the most it can add), their lengths in Erode's locals.
+  // (sized before a pass for the most it can add), their lengths in Erode's locals. EndStep
+  // writes the rim straight into active_buf, the first pass's list, its nodes stamped with the
+  // first pass's queue stamp (queue_stamp + 1): membership of the rim and of that list at once.
   std::vector<Work> active_buf, next_buf;
 
   explicit Impl(const terrain::Terrain& t) : terrain(t) {}
@@ -436,18 +437,19 @@ struct ScmSoil::Impl {
   };
   void ErodeVisit(const Work& w, ErodePass& s);
   // The rim nodes of contact ct in the order +i, -i, +j, -j (deformable, not in contact this
-  // step, not yet on the rim), written from rim[n_rim] on; their tiles allocated if missing.
-  // Returns the new count.
-  __attribute__((noinline)) size_t RimOf(const Contact& ct, int32_t step, Work* rim,
-                                         size_t n_rim) {
+  // step, not yet on the rim: not stamped rim_stamp), written from rim[n_rim] on; their tiles
+  // allocated if missing. Returns the new count.
+  __attribute__((noinline)) size_t RimOf(const Contact& ct, int32_t step, int32_t rim_stamp,
+                                         Work* rim, size_t n_rim) {
     Node* nbs[4];
     Neighbours(ct.node, ct.i, ct.j, true, nbs);
     for (int e = 0; e < 4; ++e) {
       Node* nb = nbs[e];
-      if (nb == nullptr || nb->slot < 0 || nb->contact_step == step || nb->mark_step == step) {
+      if (nb == nullptr || nb->slot < 0 || nb->contact_step == step ||
+          nb->queue_stamp == rim_stamp) {
         continue;
       }
-      nb->mark_step = step;
+      nb->queue_stamp = rim_stamp;
       rim[n_rim++] = {ct.i + kDi[e], ct.j + kDj[e], 0, nb};
     }
     return n_rim;
@@ -495,6 +497,7 @@ struct ScmSoil::Impl {
   }
   std::vector<double> room;
   std::vector<char> full_scratch;
+  std::vector<size_t> under_tread;   // DepositOnRim's scratch
 };
 
 ScmSoil::ScmSoil(const terrain::Terrain& terrain, const SoilConfig& config)
@@ -795,6 +798,10 @@ void ScmSoil::Impl::DepositOnRim(const Patch& patch, size_t begin, size_t end, d
     return;
   }
   room.assign(n, 1e300);
+  // The rim nodes under the tread (room < 1e300), in rim order: the only ones the water-filling
+  // can cap while a share is <= 1e300 (always: a share is a part of the displaced volume).
+  if (under_tread.size() < n) under_tread.resize(n);
+  size_t n_under = 0;
   // A wheel's tread (|lat| <= half width) lies within lat_reach of the centre's vertical plane
   // across the axle (as in WheelContact's rows): a rim node further out is not under it.
   const Vec3& ca = patch.center;
@@ -806,7 +813,7 @@ void ScmSoil::Impl::DepositOnRim(const Patch& patch, size_t begin, size_t end, d
   BeltBottom belt;
   if (patch.belt) belt.Init(patch.center, patch.belt_end, patch.axis, patch.half_width);
   for (size_t k = 0; k < n; ++k) {
-    const Work& w = rim[begin + k];
+    const Work& w = active_buf[begin + k];
     if (!patch.belt &&
         std::abs((w.i * dx - ca.x()) * ax.x() + (w.j * dx - ca.y()) * ax.y()) > lat_reach) {
       continue;
@@ -816,7 +823,10 @@ void ScmSoil::Impl::DepositOnRim(const Patch& patch, size_t begin, size_t end, d
                                         t <= 1.0
                                   : WheelBottomAt(patch.center, patch.axis, patch.radius,
                                                   patch.half_width, w.i * dx, w.j * dx, &z, &lat);
-    if (under) room[k] = std::max(0.0, z - Level(*w.node));
+    if (under) {
+      room[k] = std::max(0.0, z - Level(*w.node));
+      under_tread[n_under++] = k;
+    }
   }
   double remaining = volume;
   size_t open = n;
@@ -825,24 +835,31 @@ void ScmSoil::Impl::DepositOnRim(const Patch& patch, size_t begin, size_t end, d
   while (open > 0 && remaining > 0.0) {
     const double share = remaining / static_cast<double>(open);
     bool capped = false;
-    for (size_t k = 0; k < n; ++k) {
-      if (full[k] || room[k] >= share) continue;
-      Raise(rim[begin + k].node, room[k]);
+    // Every rim node with room < share, in rim order, takes its room: with share <= 1e300 the
+    // others (room 1e300) never do, so only the nodes under the tread are looked at.
+    auto cap = [&](size_t k) {
+      if (full[k] || room[k] >= share) return;
+      Raise(active_buf[begin + k].node, room[k]);
       remaining -= room[k];
       full[k] = 1;
       --open;
       capped = true;
+    };
+    if (share <= 1e300) {
+      for (size_t u = 0; u < n_under; ++u) cap(under_tread[u]);
+    } else {
+      for (size_t k = 0; k < n; ++k) cap(k);
     }
     if (capped) continue;
     for (size_t k = 0; k < n; ++k) {
       if (full[k]) continue;
-      Raise(rim[begin + k].node, share);
+      Raise(active_buf[begin + k].node, share);
     }
     remaining = 0.0;
   }
   if (remaining > 0.0) {  // all rim nodes under the tread and full: raise them anyway
     const double share = remaining / static_cast<double>(n);
-    for (size_t k = 0; k < n; ++k) Raise(rim[begin + k].node, share);
+    for (size_t k = 0; k < n; ++k) Raise(active_buf[begin + k].node, share);
   }
 }
 
@@ -1215,9 +1232,11 @@ void ScmSoil::EndStep(double /*dt*/) {
   Impl& m = *impl_;
   const BulldozingParams& bp = config_.bulldozing;
   if (bp.enabled) {
-    // at most four rim nodes per contact: the rim written by index, no call on the way
-    if (m.rim.size() < 4 * m.contacts.size()) m.rim.resize(4 * m.contacts.size());
-    Impl::Work* const rim = m.rim.data();
+    // at most four rim nodes per contact: the rim written by index, no call on the way, into
+    // the erosion's first work list (active_buf), each node stamped with the first pass's stamp
+    if (m.active_buf.size() < 4 * m.contacts.size()) m.active_buf.resize(4 * m.contacts.size());
+    Impl::Work* const rim = m.active_buf.data();
+    const int32_t rim_stamp = m.queue_stamp + 1;
     size_t n_rim = 0;
     const int32_t step = m.step;   // a local: the node writes below cannot change it
     for (const Impl::Patch& patch : m.patches) {
@@ -1235,12 +1254,12 @@ void ScmSoil::EndStep(double /*dt*/) {
         // call on the way)
         Node* nb[4];
         if (!m.FourNeighbours(n, nb)) {
-          n_rim = m.RimOf(ct, step, rim, n_rim);
+          n_rim = m.RimOf(ct, step, rim_stamp, rim, n_rim);
           continue;
         }
         auto add = [&](int e, Node* nb) {
-          if (nb->slot < 0 || nb->contact_step == step || nb->mark_step == step) return;
-          nb->mark_step = step;
+          if (nb->slot < 0 || nb->contact_step == step || nb->queue_stamp == rim_stamp) return;
+          nb->queue_stamp = rim_stamp;
           rim[n_rim++] = {ci + kDi[e], cj + kDj[e], 0, nb};
         };
         add(0, nb[0]);
@@ -1274,15 +1293,15 @@ void ScmSoil::Impl::Erode(const BulldozingParams& bp) {
   s.propagations = bp.erosion_propagations;
   // The first pass's list: the rim, then the nodes carried over (their node pointers hold between
   // steps: tiles never move, and Restore looks them up again), each once.
+  // The rim is active_buf[0, n_rim) already, its nodes stamped queue_stamp + 1 by EndStep.
   ++queue_stamp;
   if (active_buf.size() < n_rim + pending.size()) active_buf.resize(n_rim + pending.size());
-  size_t n_active = 0;
+  size_t n_active = n_rim;
   auto first = [this, &n_active](const Work& w) {
     if (w.node->queue_stamp == queue_stamp) return;
     w.node->queue_stamp = queue_stamp;
     active_buf[n_active++] = w;
   };
-  for (size_t k = 0; k < n_rim; ++k) first(rim[k]);
   for (const Work& w : pending) first(w);
   pending.clear();
   // A local for the maximum raise: the node writes below (doubles and int32 stamps) could change
