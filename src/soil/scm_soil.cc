@@ -65,10 +65,9 @@ struct Node {
                               // four in its tile)
   int32_t contact_step = -2;  // last step with wheel contact
   int32_t queue_stamp = -1;   // scratch stamp (rim and erosion work list membership)
-  int32_t tile = -1;          // allocation index of the node's tile (in the struct's padding)
 };
 
-static_assert(sizeof(Node) == 80, "the tile index, local index and links live in Node's padding");
+static_assert(sizeof(Node) == 72, "the local index and links live in the padding after slot");
 
 // Node::links, per direction: the neighbour is in the node's tile (pointer offset kInTileStep),
 // in the adjacent tile that way (Tile::adj; kCrossStep from the node's local index), or outside
@@ -365,12 +364,10 @@ struct ScmSoil::Impl {
   // be inlined into the scans.
   __attribute__((noinline)) int32_t Allocate(int tx, int ty) {
     auto tile = std::make_unique<Tile>();
-    const auto id = static_cast<int32_t>(tiles.size());
     for (int b = 0; b < kTileSize; ++b) {
       tile->row_top_m[b] = -1e300;
       for (int a = 0; a < kTileSize; ++a) {
         Node& n = tile->nodes[b * kTileSize + a];
-        n.tile = id;
         n.local = static_cast<uint8_t>(b * kTileSize + a);
         const int i = i_min + tx * kTileSize + a, j = j_min + ty * kTileSize + b;
         if (i > i_max || j > j_max) continue;  // beyond the world edge: stays rigid (links 0xff)
