@@ -27,6 +27,7 @@ STAGES = [
     ("    soil (track)", r"vb::soil::ScmSoil::TrackContact\("),
     ("  soil end of step", r"vb::soil::ScmSoil::EndStep\("),
     ("    erosion", r"vb::soil::ScmSoil::Impl::Erode\("),
+    ("  dynamics step (vb)", r"vb::engine::PhysicsWorld::Impl::StepBody\("),
     ("  Bullet step", r"btDiscreteDynamicsWorld::stepSimulation\("),
     ("    articulated-body dynamics", r"btMultiBodyDynamicsWorld::solveExternalForces\("),
     ("    solver setup (rows)", r"btMultiBodyConstraintSolver::solveGroupCacheFriendlySetup\("),

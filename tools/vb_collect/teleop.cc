@@ -406,22 +406,16 @@ class TeleopMode : public Mode {
   }
 
  private:
-  // The re-simulation must be the recorded drive: the same number of steps, status and every
-  // trajectory value to the bit (the CSV holds each double exactly, "%.17g").
+  // The re-simulation must be the recorded drive: every trajectory value to the bit (the CSV
+  // holds each double exactly, "%.17g"), the same number of steps and status.
   static void CheckReproduced(const Recording& rec, const std::vector<std::vector<double>>& rows,
                               const vb::runner::TrialResult& again, size_t wheels) {
     const std::string build = " (recorded by commit " + rec.row.git_commit + ", re-simulated by " +
                               vb::io::BuildGitCommit() +
                               "; a replay is bit-exact only on a build with the same physics)";
-    const std::string status(vb::runner::TrialStatusName(again.status));
-    if (again.trajectory.size() != rows.size() || status != rec.row.status) {
-      throw vb::InputError(
-          rec.json_path, 0, "status",
-          "the re-simulation does not reproduce the drive: recorded " + rec.row.status + " at " +
-              vb::io::FormatDouble(rec.row.sim_time_s) + " s, re-simulated " + status + " at " +
-              vb::io::FormatDouble(again.sim_time_s) + " s" + build);
-    }
-    for (size_t i = 0; i < rows.size(); ++i) {
+    // the first differing value first: it is where the drives part, the status is a consequence
+    const size_t common = std::min(rows.size(), again.trajectory.size());
+    for (size_t i = 0; i < common; ++i) {
       const std::vector<double> v = RowOf(again.trajectory[i], wheels);
       for (size_t c = 0; c < v.size(); ++c) {
         if (v[c] == rows[i][c]) continue;
@@ -437,6 +431,14 @@ class TeleopMode : public Mode {
                                  vb::io::FormatDouble(rows[i][c]) + ", re-simulated " +
                                  vb::io::FormatDouble(v[c]) + build);
       }
+    }
+    const std::string status(vb::runner::TrialStatusName(again.status));
+    if (again.trajectory.size() != rows.size() || status != rec.row.status) {
+      throw vb::InputError(
+          rec.json_path, 0, "status",
+          "the re-simulation does not reproduce the drive: recorded " + rec.row.status + " at " +
+              vb::io::FormatDouble(rec.row.sim_time_s) + " s, re-simulated " + status + " at " +
+              vb::io::FormatDouble(again.sim_time_s) + " s" + build);
     }
   }
 

@@ -1,14 +1,18 @@
-// The dynamics/collision adapter: the only door to Bullet. Everything above the engine core talks
-// to rigid and articulated bodies through this class, in vb types; no Bullet type escapes.
+// The dynamics/collision adapter: the only door to the multibody dynamics. Everything above the
+// engine core talks to rigid and articulated bodies through this class, in vb types; no type of
+// the implementation escapes.
 //
-// What Bullet does for vb: articulated vehicles (btMultiBody, Featherstone) and their constraint
-// solver: joint limits, implicit joint motors (brakes) and the body-body contacts that
-// vb generates itself each step (AddContact: chassis against the terrain and the obstacles, wheels
-// against the obstacles; terrain/body_contact.h), solved as non-penetration and Coulomb friction
-// constraints. What it does NOT do: collision detection (Bullet's broadphase, contact caches and
-// meshes are not used, so a step depends only on the bodies' state: GetState/SetState restore it
-// bit for bit) and wheel-ground contact, which vb computes from the terrain query and applies as
-// external forces (docs/architecture.md).
+// Two implementations (src/engine/CMakeLists.txt, VB_PHYSICS): vb's own joint-space dynamics
+// (src/engine/dynamics/physics_world_vb.cc, the default) and Bullet's btMultiBody with its
+// constraint solver (src/engine/physics/physics_world.cc). What they do for vb: articulated
+// vehicles and their constraints: joint limits, implicit joint motors (brakes) and the body-body
+// contacts that vb generates itself each step (AddContact: chassis against the terrain and the
+// obstacles, wheels against the obstacles; terrain/body_contact.h), solved as non-penetration
+// and Coulomb friction constraints (vb's: two friction directions in a cone; Bullet's default
+// mode: one). What they do NOT do: collision detection (no broadphase, contact caches or meshes,
+// so a step depends only on the bodies' state: GetState/SetState restore it bit for bit) and
+// wheel-ground contact, which vb computes from the terrain query and applies as external forces
+// (docs/architecture.md).
 #pragma once
 
 #include <memory>
@@ -55,6 +59,10 @@ struct ObstacleContact {
   MultiBodyId body = -1;
   int obstacle_tag = -1;
 };
+
+// Sorts by body, then tag, and drops repeats: the order of PhysicsWorld::ObstacleContacts() (for
+// the adapters).
+void SortObstacleContacts(std::vector<ObstacleContact>* contacts);
 
 // A unilateral contact of a body with the static world for the next step (from vb's own contact
 // generation): non-penetration along normal_W with Coulomb friction, solved implicitly with the

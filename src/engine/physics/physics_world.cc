@@ -680,15 +680,7 @@ void PhysicsWorld::Step(double dt) {
   }
 
   // Obstacle contacts of this step, in a deterministic order.
-  std::sort(m.contacts.begin(), m.contacts.end(),
-            [](const ObstacleContact& x, const ObstacleContact& y) {
-              return x.body != y.body ? x.body < y.body : x.obstacle_tag < y.obstacle_tag;
-            });
-  m.contacts.erase(std::unique(m.contacts.begin(), m.contacts.end(),
-                               [](const ObstacleContact& x, const ObstacleContact& y) {
-                                 return x.body == y.body && x.obstacle_tag == y.obstacle_tag;
-                               }),
-                   m.contacts.end());
+  SortObstacleContacts(&m.contacts);
 }
 
 const std::vector<ObstacleContact>& PhysicsWorld::ObstacleContacts() const {
