@@ -9,7 +9,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <string>
+#include <type_traits>
 #include <utility>
 
 #include "vb/engine/error.h"
@@ -57,13 +59,22 @@ struct Node {
   Vec3 shear_m = Vec3::Zero();// Janosi shear displacement (world vector, in the contact plane)
   float cos_slope = 1.0f;     // z of the undeformed terrain normal
   int8_t slot = -1;           // soil slot (SoilSlot), -1: rigid or outside the world
+  uint8_t local = 0;          // index in its tile: row * kTileSize + column (TileOf)
+  uint8_t links = 0xff;       // where its 4-neighbours are, 2 bits per direction e (kDi, kDj;
+                              // bits 2e, 2e + 1): kInTile, kAdjacentTile or kOutside (0: all
+                              // four in its tile)
   int32_t contact_step = -2;  // last step with wheel contact
-  int32_t mark_step = -2;     // scratch stamp (rim membership in EndStep)
-  int32_t queue_stamp = -1;   // scratch stamp (erosion work list membership)
-  int32_t tile = -1;          // allocation index of the node's tile (in the struct's padding)
+  int32_t queue_stamp = -1;   // scratch stamp (rim and erosion work list membership)
 };
 
-static_assert(sizeof(Node) == 80, "the tile index lives in Node's padding");
+static_assert(sizeof(Node) == 72, "the local index and links live in the padding after slot");
+
+// Node::links, per direction: the neighbour is in the node's tile (pointer offset kInTileStep),
+// in the adjacent tile that way (Tile::adj; kCrossStep from the node's local index), or outside
+// the world.
+constexpr unsigned kInTile = 0, kAdjacentTile = 1, kOutside = 2;
+constexpr int kInTileStep[4] = {1, -1, kTileSize, -kTileSize};
+constexpr int kCrossStep[4] = {-kTileMask, kTileMask, -kTileMask * kTileSize, kTileMask * kTileSize};
 
 // Advances a contact node's Janosi shear displacement by one step of the surface's slip: restarted
 // when the node (or its block) was not in contact the step before, moved by the velocity's part
@@ -90,7 +101,18 @@ struct Tile {
   // of them has had; levels only sink below level0: a plastic sinkage is never negative but by
   // rounding, ~1e-17 m, far inside kScanMargin_m). -1e300: no deformable node in the row.
   double row_top_m[kTileSize];
+  // The allocated tiles beside this one in the directions +i, -i, +j, -j (kDi, kDj), nullptr
+  // where none is (not allocated, or outside the world). Kept by Allocate; rebuilt by Restore
+  // (a snapshot's copies hold the pointers of the soil they were taken from).
+  Tile* adj[4] = {nullptr, nullptr, nullptr, nullptr};
 };
+
+static_assert(std::is_standard_layout_v<Tile> && offsetof(Tile, nodes) == 0,
+              "TileOf: a tile's address is its first node's");
+
+// The tile holding node n: its nodes array starts n->local nodes before n (no look-up through
+// the tile list).
+inline Tile* TileOf(Node* n) { return reinterpret_cast<Tile*>(n - n->local); }
 
 // The node's current level: level0 - plastic / cos_slope (sink_m holds the quotient).
 double Level(const Node& n) { return n.level0_m - n.sink_m; }
@@ -226,8 +248,7 @@ struct ScmSoil::Impl {
     n->level0_m += dh;
     if (dh > 0.0) {
       max_raise_m = std::max(max_raise_m, n->level0_m - n->base_m);
-      Tile& t = *tiles[static_cast<size_t>(n->tile)];
-      double& top = t.row_top_m[(n - t.nodes) >> kTileBits];
+      double& top = TileOf(n)->row_top_m[n->local >> kTileBits];
       top = std::max(top, n->level0_m);
     }
   }
@@ -266,11 +287,13 @@ struct ScmSoil::Impl {
     Node* node;   // the node at (i, j) (tiles never move while they exist; Restore looks
                   // pending's up again in the restored tiles)
   };
-  std::vector<Work> rim, pending;
-  size_t n_rim = 0;   // this step's rim: rim[0, n_rim) (rim is a buffer written by index)
+  std::vector<Work> pending;
+  size_t n_rim = 0;   // this step's rim: active_buf[0, n_rim) (see active_buf)
   int32_t queue_stamp = 0;
   // The erosion passes' work lists (this pass's, the next pass's): buffers written by index
-  // (sized before a pass for the most it can add), their lengths in Erode's locals.
+  // (sized before a pass for the most it can add), their lengths in Erode's locals. EndStep
+  // writes the rim straight into active_buf, the first pass's list, its nodes stamped with the
+  // first pass's queue stamp (queue_stamp + 1): membership of the rim and of that list at once.
   std::vector<Work> active_buf, next_buf;
 
   explicit Impl(const terrain::Terrain& t) : terrain(t) {}
@@ -337,16 +360,25 @@ struct ScmSoil::Impl {
     return true;
   }
 
-  int32_t Allocate(int tx, int ty) {
+  // Not inline: once per tile, and the look-ups that call it (AtInRow, At) stay small enough to
+  // be inlined into the scans.
+  __attribute__((noinline)) int32_t Allocate(int tx, int ty) {
     auto tile = std::make_unique<Tile>();
-    const auto id = static_cast<int32_t>(tiles.size());
     for (int b = 0; b < kTileSize; ++b) {
       tile->row_top_m[b] = -1e300;
       for (int a = 0; a < kTileSize; ++a) {
         Node& n = tile->nodes[b * kTileSize + a];
-        n.tile = id;
+        n.local = static_cast<uint8_t>(b * kTileSize + a);
         const int i = i_min + tx * kTileSize + a, j = j_min + ty * kTileSize + b;
-        if (i > i_max || j > j_max) continue;  // beyond the world edge: stays rigid
+        if (i > i_max || j > j_max) continue;  // beyond the world edge: stays rigid (links 0xff)
+        // Peek's cases: +i in the tile if a < kTileMask and i < i_max, in the next tile if
+        // a == kTileMask and i < i_max, else outside; -i in the tile if a > 0, else the tile
+        // before (none at the world's first column); the same along j.
+        const unsigned pi = i < i_max ? (a != kTileMask ? kInTile : kAdjacentTile) : kOutside;
+        const unsigned mi = a != 0 ? kInTile : kAdjacentTile;
+        const unsigned pj = j < j_max ? (b != kTileMask ? kInTile : kAdjacentTile) : kOutside;
+        const unsigned mj = b != 0 ? kInTile : kAdjacentTile;
+        n.links = static_cast<uint8_t>(pi | mi << 2 | pj << 4 | mj << 6);
         const terrain::SurfacePoint sp = terrain.Query(i * dx, j * dx);
         n.base_m = n.level0_m = sp.height_m;
         n.cos_slope = static_cast<float>(std::max(0.05, sp.normal_W.z()));
@@ -354,9 +386,24 @@ struct ScmSoil::Impl {
         if (n.slot >= 0) tile->row_top_m[b] = std::max(tile->row_top_m[b], n.level0_m);
       }
     }
+    Link(tile.get(), tx, ty);
     tiles.push_back(std::move(tile));
     ++stats.tiles;
     return static_cast<int32_t>(tiles.size() - 1);
+  }
+
+  // Tile (tx, ty) and its allocated neighbours point at each other (Tile::adj).
+  void Link(Tile* tile, int tx, int ty) {
+    const int ntx[4] = {tx + 1, tx - 1, tx, tx}, nty[4] = {ty, ty, ty + 1, ty - 1};
+    for (int e = 0; e < 4; ++e) {
+      tile->adj[e] = nullptr;
+      if (ntx[e] < 0 || ntx[e] >= tiles_x || nty[e] < 0 || nty[e] >= tiles_y) continue;
+      const int32_t idx = tile_index[static_cast<size_t>(nty[e]) * tiles_x + ntx[e]];
+      if (idx < 0) continue;
+      Tile* other = tiles[static_cast<size_t>(idx)].get();
+      tile->adj[e] = other;
+      other->adj[e ^ 1] = tile;   // the opposite direction: +i <-> -i, +j <-> -j
+    }
   }
 
   double LevelAt(int i, int j) {
@@ -387,18 +434,19 @@ struct ScmSoil::Impl {
   };
   void ErodeVisit(const Work& w, ErodePass& s);
   // The rim nodes of contact ct in the order +i, -i, +j, -j (deformable, not in contact this
-  // step, not yet on the rim), written from rim[n_rim] on; their tiles allocated if missing.
-  // Returns the new count.
-  __attribute__((noinline)) size_t RimOf(const Contact& ct, int32_t step, Work* rim,
-                                         size_t n_rim) {
+  // step, not yet on the rim: not stamped rim_stamp), written from rim[n_rim] on; their tiles
+  // allocated if missing. Returns the new count.
+  __attribute__((noinline)) size_t RimOf(const Contact& ct, int32_t step, int32_t rim_stamp,
+                                         Work* rim, size_t n_rim) {
     Node* nbs[4];
     Neighbours(ct.node, ct.i, ct.j, true, nbs);
     for (int e = 0; e < 4; ++e) {
       Node* nb = nbs[e];
-      if (nb == nullptr || nb->slot < 0 || nb->contact_step == step || nb->mark_step == step) {
+      if (nb == nullptr || nb->slot < 0 || nb->contact_step == step ||
+          nb->queue_stamp == rim_stamp) {
         continue;
       }
-      nb->mark_step = step;
+      nb->queue_stamp = rim_stamp;
       rim[n_rim++] = {ct.i + kDi[e], ct.j + kDj[e], 0, nb};
     }
     return n_rim;
@@ -414,35 +462,39 @@ struct ScmSoil::Impl {
     if (idx < 0) return nullptr;
     return &tiles[static_cast<size_t>(idx)]->nodes[(lj & kTileMask) * kTileSize + (li & kTileMask)];
   }
-  // The grid bounds as the hot loops keep them, in locals (a node write could change the members
-  // as far as the compiler knows).
-  struct GridBounds {
-    int i_min, j_min, i_max, j_max;
-  };
-  GridBounds Bounds() const { return {i_min, j_min, i_max, j_max}; }
-  // The 4-neighbours of node n at (i, j), in Neighbours' order (+i, -i, +j, -j: kDi, kDj), for the
-  // rim and erosion loops: no call on the way when n lies inside its tile (nearly always), so the
-  // callers' doubles stay in registers; at a tile's border they come from Peek. False if one of
-  // them does not exist (outside the world, or its tile not allocated): the caller then takes its
-  // own path, which may allocate.
-  [[gnu::always_inline]] bool FourNeighbours(Node* n, int i, int j, const GridBounds& b,
-                                             Node* nb[4]) const {
-    const int li = (i - b.i_min) & kTileMask, lj = (j - b.j_min) & kTileMask;
-    if (li != 0 && li != kTileMask && lj != 0 && lj != kTileMask && i < b.i_max && j < b.j_max) {
+  // The 4-neighbours of node n, in Neighbours' order (+i, -i, +j, -j: kDi, kDj), for the rim and
+  // erosion loops: the nodes Peek finds (inside the world, their tile allocated), from n's links
+  // without a look-up: in n's tile by pointer offset (nearly always all four), across a tile
+  // border through the adjacent tile's pointer. No call on the way, so the callers' doubles stay
+  // in registers. False if one of them does not exist (outside the world, or its tile not
+  // allocated): the caller then takes its own path, which may allocate.
+  [[gnu::always_inline]] static bool FourNeighbours(Node* n, Node* nb[4]) {
+    const unsigned links = n->links;
+    if (links == 0) {
       nb[0] = n + 1;
       nb[1] = n - 1;
       nb[2] = n + kTileSize;
       nb[3] = n - kTileSize;
       return true;
     }
-    nb[0] = li != kTileMask && i < b.i_max ? n + 1 : Peek(i + 1, j);
-    nb[1] = li != 0 ? n - 1 : Peek(i - 1, j);
-    nb[2] = lj != kTileMask && j < b.j_max ? n + kTileSize : Peek(i, j + 1);
-    nb[3] = lj != 0 ? n - kTileSize : Peek(i, j - 1);
-    return nb[0] != nullptr && nb[1] != nullptr && nb[2] != nullptr && nb[3] != nullptr;
+    const Tile* tile = TileOf(n);
+    bool all = true;
+    for (int e = 0; e < 4; ++e) {
+      const unsigned where = (links >> (2 * e)) & 3u;
+      Node* p = nullptr;
+      if (where == kInTile) {
+        p = n + kInTileStep[e];
+      } else if (where == kAdjacentTile && tile->adj[e] != nullptr) {
+        p = &tile->adj[e]->nodes[n->local + kCrossStep[e]];
+      }
+      nb[e] = p;
+      all = all && p != nullptr;
+    }
+    return all;
   }
   std::vector<double> room;
   std::vector<char> full_scratch;
+  std::vector<size_t> under_tread;   // DepositOnRim's scratch
 };
 
 ScmSoil::ScmSoil(const terrain::Terrain& terrain, const SoilConfig& config)
@@ -743,6 +795,10 @@ void ScmSoil::Impl::DepositOnRim(const Patch& patch, size_t begin, size_t end, d
     return;
   }
   room.assign(n, 1e300);
+  // The rim nodes under the tread (room < 1e300), in rim order: the only ones the water-filling
+  // can cap while a share is <= 1e300 (always: a share is a part of the displaced volume).
+  if (under_tread.size() < n) under_tread.resize(n);
+  size_t n_under = 0;
   // A wheel's tread (|lat| <= half width) lies within lat_reach of the centre's vertical plane
   // across the axle (as in WheelContact's rows): a rim node further out is not under it.
   const Vec3& ca = patch.center;
@@ -754,7 +810,7 @@ void ScmSoil::Impl::DepositOnRim(const Patch& patch, size_t begin, size_t end, d
   BeltBottom belt;
   if (patch.belt) belt.Init(patch.center, patch.belt_end, patch.axis, patch.half_width);
   for (size_t k = 0; k < n; ++k) {
-    const Work& w = rim[begin + k];
+    const Work& w = active_buf[begin + k];
     if (!patch.belt &&
         std::abs((w.i * dx - ca.x()) * ax.x() + (w.j * dx - ca.y()) * ax.y()) > lat_reach) {
       continue;
@@ -764,7 +820,10 @@ void ScmSoil::Impl::DepositOnRim(const Patch& patch, size_t begin, size_t end, d
                                         t <= 1.0
                                   : WheelBottomAt(patch.center, patch.axis, patch.radius,
                                                   patch.half_width, w.i * dx, w.j * dx, &z, &lat);
-    if (under) room[k] = std::max(0.0, z - Level(*w.node));
+    if (under) {
+      room[k] = std::max(0.0, z - Level(*w.node));
+      under_tread[n_under++] = k;
+    }
   }
   double remaining = volume;
   size_t open = n;
@@ -773,24 +832,31 @@ void ScmSoil::Impl::DepositOnRim(const Patch& patch, size_t begin, size_t end, d
   while (open > 0 && remaining > 0.0) {
     const double share = remaining / static_cast<double>(open);
     bool capped = false;
-    for (size_t k = 0; k < n; ++k) {
-      if (full[k] || room[k] >= share) continue;
-      Raise(rim[begin + k].node, room[k]);
+    // Every rim node with room < share, in rim order, takes its room: with share <= 1e300 the
+    // others (room 1e300) never do, so only the nodes under the tread are looked at.
+    auto cap = [&](size_t k) {
+      if (full[k] || room[k] >= share) return;
+      Raise(active_buf[begin + k].node, room[k]);
       remaining -= room[k];
       full[k] = 1;
       --open;
       capped = true;
+    };
+    if (share <= 1e300) {
+      for (size_t u = 0; u < n_under; ++u) cap(under_tread[u]);
+    } else {
+      for (size_t k = 0; k < n; ++k) cap(k);
     }
     if (capped) continue;
     for (size_t k = 0; k < n; ++k) {
       if (full[k]) continue;
-      Raise(rim[begin + k].node, share);
+      Raise(active_buf[begin + k].node, share);
     }
     remaining = 0.0;
   }
   if (remaining > 0.0) {  // all rim nodes under the tread and full: raise them anyway
     const double share = remaining / static_cast<double>(n);
-    for (size_t k = 0; k < n; ++k) Raise(rim[begin + k].node, share);
+    for (size_t k = 0; k < n; ++k) Raise(active_buf[begin + k].node, share);
   }
 }
 
@@ -1163,12 +1229,13 @@ void ScmSoil::EndStep(double /*dt*/) {
   Impl& m = *impl_;
   const BulldozingParams& bp = config_.bulldozing;
   if (bp.enabled) {
-    // at most four rim nodes per contact: the rim written by index, no call on the way
-    if (m.rim.size() < 4 * m.contacts.size()) m.rim.resize(4 * m.contacts.size());
-    Impl::Work* const rim = m.rim.data();
+    // at most four rim nodes per contact: the rim written by index, no call on the way, into
+    // the erosion's first work list (active_buf), each node stamped with the first pass's stamp
+    if (m.active_buf.size() < 4 * m.contacts.size()) m.active_buf.resize(4 * m.contacts.size());
+    Impl::Work* const rim = m.active_buf.data();
+    const int32_t rim_stamp = m.queue_stamp + 1;
     size_t n_rim = 0;
     const int32_t step = m.step;   // a local: the node writes below cannot change it
-    const Impl::GridBounds bounds = m.Bounds();
     for (const Impl::Patch& patch : m.patches) {
       // Rim: untouched deformable 4-neighbours of this patch's contact nodes, in contact order.
       double volume = 0.0;  // displaced height summed over nodes (all cells have equal area)
@@ -1183,13 +1250,13 @@ void ScmSoil::EndStep(double /*dt*/) {
         // which allocates the missing tiles in Neighbours' order (not inline: the loop has no
         // call on the way)
         Node* nb[4];
-        if (!m.FourNeighbours(n, ci, cj, bounds, nb)) {
-          n_rim = m.RimOf(ct, step, rim, n_rim);
+        if (!m.FourNeighbours(n, nb)) {
+          n_rim = m.RimOf(ct, step, rim_stamp, rim, n_rim);
           continue;
         }
         auto add = [&](int e, Node* nb) {
-          if (nb->slot < 0 || nb->contact_step == step || nb->mark_step == step) return;
-          nb->mark_step = step;
+          if (nb->slot < 0 || nb->contact_step == step || nb->queue_stamp == rim_stamp) return;
+          nb->queue_stamp = rim_stamp;
           rim[n_rim++] = {ci + kDi[e], cj + kDj[e], 0, nb};
         };
         add(0, nb[0]);
@@ -1223,21 +1290,20 @@ void ScmSoil::Impl::Erode(const BulldozingParams& bp) {
   s.propagations = bp.erosion_propagations;
   // The first pass's list: the rim, then the nodes carried over (their node pointers hold between
   // steps: tiles never move, and Restore looks them up again), each once.
+  // The rim is active_buf[0, n_rim) already, its nodes stamped queue_stamp + 1 by EndStep.
   ++queue_stamp;
   if (active_buf.size() < n_rim + pending.size()) active_buf.resize(n_rim + pending.size());
-  size_t n_active = 0;
+  size_t n_active = n_rim;
   auto first = [this, &n_active](const Work& w) {
     if (w.node->queue_stamp == queue_stamp) return;
     w.node->queue_stamp = queue_stamp;
     active_buf[n_active++] = w;
   };
-  for (size_t k = 0; k < n_rim; ++k) first(rim[k]);
   for (const Work& w : pending) first(w);
   pending.clear();
   // A local for the maximum raise: the node writes below (doubles and int32 stamps) could change
   // the member as far as the compiler knows, which would reload and store it at every raise.
   s.max_raise = max_raise_m;   // written back after the passes (max is exact in any order)
-  const GridBounds bounds = Bounds();
   for (int pass = 0; pass < bp.erosion_iterations && n_active > 0; ++pass) {
     const int32_t stamp = s.stamp = ++queue_stamp;
     // a visit adds at most its node and its four neighbours, each once per pass
@@ -1252,22 +1318,21 @@ void ScmSoil::Impl::Erode(const BulldozingParams& bp) {
     const int32_t cur_step = s.cur_step;
     const int propagations = s.propagations;
     double max_raise = s.max_raise;
-    std::unique_ptr<Tile>* tile_ptrs = tiles.data();
     const Work* const work = active_buf.data();
     for (size_t k = 0; k < n_active; ++k) {
       const Work& w = work[k];
       Node* const n = w.node;
       if (n->slot < 0 || n->contact_step == cur_step) continue;
-      const int wi = w.i, wj = w.j, ring = w.ring;
+      // w's grid position and ring read where they are used (the work lists' entries are
+      // only needed to queue a node, which few edges do)
       Node* nb[4];
-      if (!FourNeighbours(n, wi, wj, bounds, nb)) {
+      if (!FourNeighbours(n, nb)) {
         s.max_raise = max_raise;
         s.out = out;
         s.n_out = n_out;
         ErodeVisit(w, s);
         max_raise = s.max_raise;
         n_out = s.n_out;
-        tile_ptrs = tiles.data();
         continue;
       }
       // n's level0 and sinkage in registers: n's own writes below are these, and no neighbour
@@ -1283,36 +1348,32 @@ void ScmSoil::Impl::Erode(const BulldozingParams& bp) {
         if (std::abs(dy) <= threshold) return;
         if (nb->slot < 0 || nb->contact_step == cur_step) return;
         const double q = 0.5 * (std::abs(dy) - threshold) / 4.0;
-        const int nj = wj + kDj[e];
         Node* up;
-        int up_j;
         if (dy > 0.0) {
           level0_n += -q;
           n->level0_m = level0_n;
           nb->level0_m += q;
           up = nb;
-          up_j = nj;
         } else {
           level0_n += q;
           n->level0_m = level0_n;
           nb->level0_m += -q;
           up = n;
-          up_j = wj;
         }
         const double up_level0 = up->level0_m;
         max_raise = std::max(max_raise, up_level0 - up->base_m);
-        double& top = tile_ptrs[up->tile]->row_top_m[(up_j - bounds.j_min) & kTileMask];
+        double& top = TileOf(up)->row_top_m[up->local >> kTileBits];
         top = std::max(top, up_level0);
         level_n = level0_n - sink_n;
         if (q > kErosionSettled_m) {
           if (!n_queued) {
             n_queued = true;
             n->queue_stamp = stamp;
-            out[n_out++] = {wi, wj, ring, n};
+            out[n_out++] = {w.i, w.j, w.ring, n};
           }
-          if (ring < propagations && nb->queue_stamp != stamp) {
+          if (w.ring < propagations && nb->queue_stamp != stamp) {
             nb->queue_stamp = stamp;
-            out[n_out++] = {wi + kDi[e], nj, ring + 1, nb};
+            out[n_out++] = {w.i + kDi[e], w.j + kDj[e], w.ring + 1, nb};
           }
         }
       };
@@ -1343,8 +1404,7 @@ __attribute__((noinline)) void ScmSoil::Impl::ErodeVisit(const Work& w, ErodePas
   auto raise_up = [this, &s](Node* nd, double dh) {
     nd->level0_m += dh;
     s.max_raise = std::max(s.max_raise, nd->level0_m - nd->base_m);
-    Tile& t = *tiles[static_cast<size_t>(nd->tile)];
-    double& top = t.row_top_m[(nd - t.nodes) >> kTileBits];
+    double& top = TileOf(nd)->row_top_m[nd->local >> kTileBits];
     top = std::max(top, nd->level0_m);
   };
   double level_n = Level(*n);
@@ -1414,6 +1474,33 @@ const ScmStats& ScmSoil::stats() const {
   return impl_->stats;
 }
 
+bool ScmSoil::NeighbourLinksMatchLookUps() const {
+  const Impl& m = *impl_;
+  for (int ty = 0; ty < m.tiles_y; ++ty) {
+    for (int tx = 0; tx < m.tiles_x; ++tx) {
+      const int32_t idx = m.tile_index[static_cast<size_t>(ty) * m.tiles_x + tx];
+      if (idx < 0) continue;
+      Tile& tile = *m.tiles[static_cast<size_t>(idx)];
+      for (int b = 0; b < kTileSize; ++b) {
+        for (int a = 0; a < kTileSize; ++a) {
+          const int i = m.i_min + tx * kTileSize + a, j = m.j_min + ty * kTileSize + b;
+          if (i > m.i_max || j > m.j_max) continue;
+          Node* nb[4];
+          const bool all = Impl::FourNeighbours(&tile.nodes[b * kTileSize + a], nb);
+          bool all_looked_up = true;
+          for (int e = 0; e < 4; ++e) {
+            const Node* looked_up = m.Peek(i + kDi[e], j + kDj[e]);
+            if (nb[e] != looked_up) return false;
+            all_looked_up = all_looked_up && looked_up != nullptr;
+          }
+          if (all != all_looked_up) return false;
+        }
+      }
+    }
+  }
+  return true;
+}
+
 // Snapshot: everything that carries from one step to the next. The per-step scratch (this step's
 // contacts, patches, hits, the rim list) is empty between steps.
 struct SoilSnapshot::Data {
@@ -1465,6 +1552,13 @@ void ScmSoil::Restore(const SoilSnapshot& snapshot) {
     }
   }
   m.tile_index = d.tile_index;
+  // the tiles' neighbour pointers into this soil's tiles (the copies hold the snapshot's)
+  for (int ty = 0; ty < m.tiles_y; ++ty) {
+    for (int tx = 0; tx < m.tiles_x; ++tx) {
+      const int32_t idx = m.tile_index[static_cast<size_t>(ty) * m.tiles_x + tx];
+      if (idx >= 0) m.Link(m.tiles[static_cast<size_t>(idx)].get(), tx, ty);
+    }
+  }
   m.step = d.step;
   m.stats = d.stats;
   m.max_raise_m = d.max_raise_m;

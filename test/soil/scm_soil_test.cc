@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <random>
 
 #include "io/soil_io.h"
 #include "support/worlds.h"
@@ -157,6 +158,43 @@ TEST(ScmSoilTest, SameInputsGiveTheSameBits) {
     b.EndStep(0.005);
     ASSERT_EQ(std::memcmp(oa.force_W.data(), ob.force_W.data(), sizeof(double) * 3), 0);
     ASSERT_EQ(std::memcmp(oa.torque_W.data(), ob.torque_W.data(), sizeof(double) * 3), 0);
+  }
+}
+
+// The rim and erosion passes find a node's 4-neighbours from per-node links and per-tile
+// neighbour pointers instead of the grid look-up: on worlds whose edges fall inside a tile and
+// on a tile border, with wheels pressed and dragged at random places (the world's edges
+// included), headings and cambers, so that tiles are allocated in many orders by the scan, the
+// rim and the erosion, every allocated node's neighbours must be the look-up's; also in a soil
+// restored from a snapshot (whose tiles are copies).
+TEST(ScmSoilTest, NeighbourLinksAreTheGridLookUps) {
+  for (const double size : {10.0, 12.0}) {
+    const terrain::TaskSpec task =
+        test::PlaneTask(size, 0.0, 0.0, 0.0, terrain::SurfaceClass::kSnow);
+    const terrain::Terrain ground(task);
+    ScmSoil soil(ground, Config());
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> pos(-0.5 * size - 0.3, 0.5 * size + 0.3);
+    std::uniform_real_distribution<double> heading(-M_PI, M_PI), camber(-0.3, 0.3);
+    for (int wheel = 0; wheel < 60; ++wheel) {
+      const double x = pos(rng), y = pos(rng), psi = heading(rng), tilt = camber(rng);
+      for (int k = 0; k < 20; ++k) {
+        WheelSoilInput w = Wheel(0.0, 0.0);
+        w.center_W = Vec3(x + 0.01 * k * std::cos(psi), y + 0.01 * k * std::sin(psi),
+                          0.45 - 0.004 * k);
+        w.axis_W = Vec3(-std::sin(psi), std::cos(psi), tilt).normalized();
+        w.velocity_W = Vec3(2.0 * std::cos(psi), 2.0 * std::sin(psi), 0.0);
+        soil.WheelContact(w, 0.005);
+        soil.EndStep(0.005);
+      }
+      ASSERT_TRUE(soil.NeighbourLinksMatchLookUps()) << "size " << size << ", wheel " << wheel;
+    }
+    EXPECT_GT(soil.stats().tiles, 40);
+    ScmSoil restored(ground, Config());
+    restored.Restore(soil.Snapshot());
+    EXPECT_TRUE(restored.NeighbourLinksMatchLookUps());
+    soil.Restore(soil.Snapshot());
+    EXPECT_TRUE(soil.NeighbourLinksMatchLookUps());
   }
 }
 

@@ -71,6 +71,10 @@ class ScmSoil : public SoilContact {
   // Sum over touched nodes of plastic sinkage * cell area (m^3): the compaction so far.
   double CompactedVolume_m3() const;
   const ScmStats& stats() const;
+  // For tests: whether, for every node of every allocated tile inside the world, the
+  // 4-neighbours the rim and erosion passes take from the node's links and the tiles' neighbour
+  // pointers are the nodes the grid look-up finds (none where it finds none).
+  bool NeighbourLinksMatchLookUps() const;
 
   // Between steps (after EndStep): copies of the touched tiles only.
   SoilSnapshot Snapshot() const;
