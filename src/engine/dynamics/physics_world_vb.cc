@@ -45,6 +45,9 @@ enum class RowKind { kJoint, kNormal, kFriction };
 
 // One constraint row of one body: lambda is an impulse along j (generalised velocities).
 struct Row {
+  // User-provided, so that emplace_back() does not zero the arrays first (value-initialisation
+  // would: ~600 bytes per row); only the entries a row sets are read.
+  Row() {}
   double j[kMaxDof];  // zero except at nz[0 .. nnz)
   int nz[kMaxDof];
   int nnz = 0;
