@@ -1,6 +1,6 @@
-// vb's own articulated-body dynamics behind the physics adapter (physics_world.h), built instead of
-// the Bullet adapter when CMake is configured with -DVB_PHYSICS=vb (issue 24). Same interface, same
-// model: a floating base with a tree of single-DoF links, joint limits, implicit joint motors and
+// vb's own articulated-body dynamics behind the physics adapter (physics_world.h): the default
+// implementation (CMake VB_PHYSICS=vb; =bullet links the Bullet adapter instead; issue 24). Same
+// interface, same model: a floating base with a tree of single-DoF links, joint limits, implicit joint motors and
 // vb's contacts as implicit constraints; semi-implicit Euler at one fixed step.
 //
 // Why: Bullet's generic multibody code (its articulated-body algorithm over spatial transforms and
