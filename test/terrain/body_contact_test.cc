@@ -222,6 +222,19 @@ Terrain RoughGround(test::UniformLcg& uniform) {
 
 // A random pose over the middle of that world: x, y in [-8, 8) m, z in [z0, z0 + dz) m, tilted by
 // up to 0.3 rad about x and y, any heading.
+// Two contact lists equal bit for bit (points, normals, depths), friction and tags included.
+void ExpectBitIdentical(const std::vector<BodyContact>& a, const std::vector<BodyContact>& b,
+                        int pose) {
+  ASSERT_EQ(a.size(), b.size()) << "pose " << pose;
+  for (size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(std::memcmp(a[i].point_W.data(), b[i].point_W.data(), 3 * sizeof(double)), 0);
+    EXPECT_EQ(std::memcmp(a[i].normal_W.data(), b[i].normal_W.data(), 3 * sizeof(double)), 0);
+    EXPECT_EQ(std::memcmp(&a[i].depth_m, &b[i].depth_m, sizeof(double)), 0);
+    EXPECT_EQ(a[i].friction, b[i].friction);
+    EXPECT_EQ(a[i].obstacle_tag, b[i].obstacle_tag);
+  }
+}
+
 Pose RandomPose(test::UniformLcg& uniform, double z0, double dz) {
   Pose pose;
   pose.position = Vec3(-8.0 + 16.0 * uniform(), -8.0 + 16.0 * uniform(), z0 + dz * uniform());
@@ -301,14 +314,7 @@ TEST(BodyContactTest, LazilyPosedSamplesGiveBitIdenticalContacts) {
     GroundContacts(posed_without_samples, local.samples, pose, ground, max_h, 0.8, 8, &scratch,
                    &lazy);
     if (!all.empty()) ++touching;
-    ASSERT_EQ(all.size(), lazy.size()) << "pose " << k;
-    for (size_t i = 0; i < all.size(); ++i) {
-      EXPECT_EQ(std::memcmp(all[i].point_W.data(), lazy[i].point_W.data(), 3 * sizeof(double)), 0);
-      EXPECT_EQ(std::memcmp(all[i].normal_W.data(), lazy[i].normal_W.data(), 3 * sizeof(double)),
-                0);
-      EXPECT_EQ(std::memcmp(&all[i].depth_m, &lazy[i].depth_m, sizeof(double)), 0);
-      EXPECT_EQ(all[i].friction, lazy[i].friction);
-    }
+    ExpectBitIdentical(all, lazy, k);
     // the height alone, as the lazy path computes it, is the posed sample's height bit for bit
     const Mat3 r = pose.rotation.toRotationMatrix();
     for (size_t i = 0; i < local.samples.size(); ++i) {
@@ -371,14 +377,7 @@ TEST(BodyContactTest, LazilyPosedSamplesAndSampleRunsGiveBitIdenticalObstacleCon
     ObstacleContacts(posed, whole, 0.8, 8, &scratch, &all);
     ObstacleContacts(posed_without_samples, local.samples, pose, field, 0.8, 8, &scratch, &lazy);
     if (!all.empty()) ++touching;
-    ASSERT_EQ(all.size(), lazy.size()) << "pose " << k;
-    for (size_t i = 0; i < all.size(); ++i) {
-      EXPECT_EQ(std::memcmp(all[i].point_W.data(), lazy[i].point_W.data(), 3 * sizeof(double)), 0);
-      EXPECT_EQ(std::memcmp(all[i].normal_W.data(), lazy[i].normal_W.data(), 3 * sizeof(double)),
-                0);
-      EXPECT_EQ(std::memcmp(&all[i].depth_m, &lazy[i].depth_m, sizeof(double)), 0);
-      EXPECT_EQ(all[i].obstacle_tag, lazy[i].obstacle_tag);
-    }
+    ExpectBitIdentical(all, lazy, k);
   }
   EXPECT_GT(touching, 400);  // the poses do exercise contacts
 }
