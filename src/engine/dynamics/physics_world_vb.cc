@@ -1,7 +1,7 @@
 // vb's own articulated-body dynamics behind the physics adapter (physics_world.h): the default
 // implementation (CMake VB_PHYSICS=vb; =bullet links the Bullet adapter instead; issue 24). Same
-// interface, same model: a floating base with a tree of single-DoF links, joint limits, implicit joint motors and
-// vb's contacts as implicit constraints; semi-implicit Euler at one fixed step.
+// interface, same model: a floating base with a tree of single-DoF links, joint limits, implicit
+// joint motors and vb's contacts as implicit constraints; semi-implicit Euler at one fixed step.
 //
 // Why: Bullet's generic multibody code (its articulated-body algorithm over spatial transforms and
 // a row-by-row Jacobian set-up through the same machinery) was ~60 % of the rigid-world step. A
@@ -41,7 +41,8 @@ constexpr int kIterations = 30;        // sweeps at most
 constexpr double kResidual = 1e-12;    // stop once no row's velocity changes by > 1 um/s
 constexpr int kFrictionDirections = 2;
 
-enum class RowKind { kJoint, kNormal, kFriction };
+// A joint's implicit motor (persistent until changed).
+enum class MotorMode { kNone, kVelocity, kPosition };
 
 // One constraint row of one body: lambda is an impulse along j (generalised velocities).
 struct Row {
@@ -97,8 +98,7 @@ struct PhysicsWorld::Impl {
     std::vector<int> chain;    // links with a DoF from the base down to this one (inclusive)
     // state
     double q = 0.0, qdot = 0.0;
-    // motor (persistent): 0 none, 1 velocity, 2 position
-    int motor = 0;
+    MotorMode motor = MotorMode::kNone;
     double motor_target_v = 0.0, motor_target_q = 0.0, motor_max_force = 0.0;
     // forces for the next step
     Vec3 force_W = Vec3::Zero(), torque_W = Vec3::Zero();
@@ -151,6 +151,14 @@ struct PhysicsWorld::Impl {
   const Body& Get(MultiBodyId id) const {
     VB_DEMAND(id >= 0 && id < static_cast<int>(bodies.size()));
     return bodies[static_cast<size_t>(id)];
+  }
+  static Link& LinkOf(Body& b, int link) {
+    VB_DEMAND(link >= 0 && link < static_cast<int>(b.links.size()));
+    return b.links[static_cast<size_t>(link)];
+  }
+  static const Link& LinkOf(const Body& b, int link) {
+    VB_DEMAND(link >= 0 && link < static_cast<int>(b.links.size()));
+    return b.links[static_cast<size_t>(link)];
   }
 
   // Link rotations, COMs, pivots and axes from the base pose and the joint coordinates.
@@ -421,17 +429,17 @@ void PhysicsWorld::Impl::StepBody(Body& b, double dt,
     if (l.dof < 0) continue;
     if (l.has_limit) {
       // lower: q - lower >= 0; upper: upper - q >= 0. Approaching within the step is free;
-      // beyond the limit, a share of the error is removed per step. A row that cannot act this
-      // step (the joint stays short of its limit even at the unconstrained velocity plus the
-      // largest change any other row could make, bounded below) is left out.
+      // beyond the limit, a share of the error is removed per step. The rows are lazy: their
+      // response is computed only once one acts (solve_row), which most never do.
       const double d_lo = l.q - l.lower, d_hi = l.upper - l.q;
       joint_row(l, 1.0, d_lo > 0 ? -d_lo / dt : -d_lo * kLimitErp / dt, 0.0, 1e30);
       joint_row(l, -1.0, d_hi > 0 ? -d_hi / dt : -d_hi * kLimitErp / dt, 0.0, 1e30);
     }
-    if (l.motor != 0 && l.motor_max_force > 0.0) {
+    if (l.motor != MotorMode::kNone && l.motor_max_force > 0.0) {
       const double impulse = l.motor_max_force * dt;
-      const double target =
-          l.motor == 2 ? 0.2 * (l.motor_target_q - l.q) / dt : l.motor_target_v;
+      const double target = l.motor == MotorMode::kPosition
+                                ? 0.2 * (l.motor_target_q - l.q) / dt
+                                : l.motor_target_v;
       joint_row(l, 1.0, target, -impulse, impulse);
     }
   }
@@ -632,8 +640,7 @@ MultiBodyId PhysicsWorld::AddMultiBody(const MultiBodyBaseSpec& base,
 
 void PhysicsWorld::SetJointPosition(MultiBodyId id, int link, double q) {
   Impl::Body& b = impl_->Get(id);
-  VB_DEMAND(link >= 0 && link < static_cast<int>(b.links.size()));
-  Impl::Link& l = b.links[static_cast<size_t>(link)];
+  Impl::Link& l = Impl::LinkOf(b, link);
   l.q = q;
   if (l.joint == JointType::kPrescribedRevolute) l.qdot = 0.0;
   b.kin_stale = b.base_moved = true;
@@ -641,8 +648,7 @@ void PhysicsWorld::SetJointPosition(MultiBodyId id, int link, double q) {
 
 void PhysicsWorld::SetPrescribedJoint(MultiBodyId id, int link, double q, double qdot) {
   Impl::Body& b = impl_->Get(id);
-  VB_DEMAND(link >= 0 && link < static_cast<int>(b.links.size()));
-  Impl::Link& l = b.links[static_cast<size_t>(link)];
+  Impl::Link& l = Impl::LinkOf(b, link);
   VB_DEMAND(l.joint == JointType::kPrescribedRevolute);
   if (q == l.q && qdot == l.qdot) return;
   if (q != l.q) b.kin_stale = l.moved = true;
@@ -654,9 +660,8 @@ void PhysicsWorld::SetPrescribedJoint(MultiBodyId id, int link, double q, double
 void PhysicsWorld::ApplyLinkForce(MultiBodyId id, int link, const Vec3& force_W,
                                   const Vec3& point_W) {
   Impl::Body& b = impl_->Get(id);
-  VB_DEMAND(link >= 0 && link < static_cast<int>(b.links.size()));
   Impl::Kinematics(b);
-  Impl::Link& l = b.links[static_cast<size_t>(link)];
+  Impl::Link& l = Impl::LinkOf(b, link);
   l.force_W += force_W;
   l.torque_W += (point_W - l.p).cross(force_W);
 }
@@ -669,8 +674,7 @@ void PhysicsWorld::ApplyBaseForce(MultiBodyId id, const Vec3& force_W, const Vec
 
 void PhysicsWorld::ApplyLinkTorque(MultiBodyId id, int link, const Vec3& torque_W) {
   Impl::Body& b = impl_->Get(id);
-  VB_DEMAND(link >= 0 && link < static_cast<int>(b.links.size()));
-  b.links[static_cast<size_t>(link)].torque_W += torque_W;
+  Impl::LinkOf(b, link).torque_W += torque_W;
 }
 
 void PhysicsWorld::ApplyBaseTorque(MultiBodyId id, const Vec3& torque_W) {
@@ -679,17 +683,15 @@ void PhysicsWorld::ApplyBaseTorque(MultiBodyId id, const Vec3& torque_W) {
 
 void PhysicsWorld::AddJointForce(MultiBodyId id, int link, double force) {
   Impl::Body& b = impl_->Get(id);
-  VB_DEMAND(link >= 0 && link < static_cast<int>(b.links.size()));
-  b.links[static_cast<size_t>(link)].joint_force += force;
+  Impl::LinkOf(b, link).joint_force += force;
 }
 
 void PhysicsWorld::SetJointVelocityMotor(MultiBodyId id, int link, double target_velocity,
                                          double max_force) {
   Impl::Body& b = impl_->Get(id);
-  VB_DEMAND(link >= 0 && link < static_cast<int>(b.links.size()));
-  Impl::Link& l = b.links[static_cast<size_t>(link)];
+  Impl::Link& l = Impl::LinkOf(b, link);
   VB_DEMAND(l.dof >= 0);
-  l.motor = 1;
+  l.motor = MotorMode::kVelocity;
   l.motor_target_v = target_velocity;
   l.motor_max_force = std::max(0.0, max_force);
 }
@@ -697,10 +699,9 @@ void PhysicsWorld::SetJointVelocityMotor(MultiBodyId id, int link, double target
 void PhysicsWorld::SetJointPositionMotor(MultiBodyId id, int link, double target_q,
                                          double max_force) {
   Impl::Body& b = impl_->Get(id);
-  VB_DEMAND(link >= 0 && link < static_cast<int>(b.links.size()));
-  Impl::Link& l = b.links[static_cast<size_t>(link)];
+  Impl::Link& l = Impl::LinkOf(b, link);
   VB_DEMAND(l.dof >= 0);
-  l.motor = 2;
+  l.motor = MotorMode::kPosition;
   l.motor_target_q = target_q;
   l.motor_target_v = 0.0;
   l.motor_max_force = std::max(0.0, max_force);
@@ -720,36 +721,31 @@ Vec3 PhysicsWorld::BaseAngularVelocity(MultiBodyId id) const { return impl_->Get
 
 Pose PhysicsWorld::LinkPose(MultiBodyId id, int link) const {
   const Impl::Body& b = impl_->Get(id);
-  VB_DEMAND(link >= 0 && link < static_cast<int>(b.links.size()));
   Impl::Kinematics(b);
-  return b.links[static_cast<size_t>(link)].pose;
+  return Impl::LinkOf(b, link).pose;
 }
 
 Vec3 PhysicsWorld::LinkPointVelocity(MultiBodyId id, int link, const Vec3& point_W) const {
   const Impl::Body& b = impl_->Get(id);
-  VB_DEMAND(link >= 0 && link < static_cast<int>(b.links.size()));
   Impl::ReadOutVelocities(b);
-  const Impl::Link& l = b.links[static_cast<size_t>(link)];
+  const Impl::Link& l = Impl::LinkOf(b, link);
   return l.v_ro + l.w_ro.cross(point_W - l.p);
 }
 
 Vec3 PhysicsWorld::LinkAngularVelocity(MultiBodyId id, int link) const {
   const Impl::Body& b = impl_->Get(id);
-  VB_DEMAND(link >= 0 && link < static_cast<int>(b.links.size()));
   Impl::ReadOutVelocities(b);
-  return b.links[static_cast<size_t>(link)].w_ro;
+  return Impl::LinkOf(b, link).w_ro;
 }
 
 double PhysicsWorld::JointPosition(MultiBodyId id, int link) const {
   const Impl::Body& b = impl_->Get(id);
-  VB_DEMAND(link >= 0 && link < static_cast<int>(b.links.size()));
-  return b.links[static_cast<size_t>(link)].q;
+  return Impl::LinkOf(b, link).q;
 }
 
 double PhysicsWorld::JointVelocity(MultiBodyId id, int link) const {
   const Impl::Body& b = impl_->Get(id);
-  VB_DEMAND(link >= 0 && link < static_cast<int>(b.links.size()));
-  return b.links[static_cast<size_t>(link)].qdot;
+  return Impl::LinkOf(b, link).qdot;
 }
 
 void PhysicsWorld::AddContact(const ContactConstraint& contact) {
