@@ -293,6 +293,22 @@ TEST_F(VehicleIoTest, EngineBlockReactionIsOptional) {
               "driveline.engine_block_reaction", "expected true or false");
 }
 
+// Optional wheel key: the width the soil contact uses, the tire's width unless the file gives
+// it (data/vehicles/hmmwv_chrono.yaml: the original's envelope-widened SCM footprint).
+TEST_F(VehicleIoTest, SoilFootprintWidthIsOptional) {
+  EXPECT_EQ(LoadVehicle(WriteText("a.yaml", kTinyVehicle)).wheel.soil_footprint_width_m, 0.32);
+  std::string text = kTinyVehicle;
+  const std::string width = "  width_m: 0.32\n";
+  const size_t at = text.find(width);
+  ASSERT_NE(at, std::string::npos);
+  text.insert(at + width.size(), "  soil_footprint_width_m: 0.38\n");
+  const vehicles::VehicleParams v = LoadVehicle(WriteText("b.yaml", text));
+  EXPECT_EQ(v.wheel.width_m, 0.32);
+  EXPECT_EQ(v.wheel.soil_footprint_width_m, 0.38);
+  text.replace(text.find("soil_footprint_width_m: 0.38"), 28, "soil_footprint_width_m: -0.1");
+  ExpectError(text, 49, "wheel.soil_footprint_width_m", "must be > 0");
+}
+
 TEST_F(VehicleIoTest, LoadsShippedHmmwv) {
   const std::string path = VB_SOURCE_DIR "/data/vehicles/hmmwv.yaml";
   if (!fs::exists(path)) GTEST_SKIP() << path << " not present yet";
@@ -345,7 +361,8 @@ class VehicleFitTest : public VehicleIoTest {
 };
 
 TEST_F(VehicleFitTest, LibraryLoads) {
-  for (const char* name : {"art", "vw", "gator", "feda", "man5t", "man7t", "man10t", "m113"}) {
+  for (const char* name :
+       {"art", "vw", "gator", "feda", "man5t", "man7t", "man10t", "m113", "hmmwv_chrono"}) {
     const vehicles::VehicleParams v =
         LoadVehicle(std::string(VB_SOURCE_DIR "/data/vehicles/") + name + ".yaml");
     EXPECT_EQ(v.name, name);

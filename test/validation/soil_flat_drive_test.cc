@@ -41,10 +41,10 @@ constexpr Reference kReferences[] = {{SurfaceClass::kSnow, "snow", 0.261, 0.108,
                                      {SurfaceClass::kSand, "sand", 0.045, 0.006, 3.96}};
 
 // The HMMWV at x = -20 m on a 128 m plane of `surface`, the soil at `grid_m`, wheels 1 cm up.
-// `wheel_width_m` > 0 replaces the tire's width (0.254 m).
-test::SoilSim FlatDrive(SurfaceClass surface, double grid_m, double wheel_width_m = 0.0) {
+// `soil_footprint_m` > 0 replaces the width the soil feels (the tire's 0.254 m).
+test::SoilSim FlatDrive(SurfaceClass surface, double grid_m, double soil_footprint_m = 0.0) {
   vehicles::VehicleParams hmmwv = test::Hmmwv();
-  if (wheel_width_m > 0.0) hmmwv.wheel.width_m = wheel_width_m;
+  if (soil_footprint_m > 0.0) hmmwv.wheel.soil_footprint_width_m = soil_footprint_m;
   return test::SoilSim(test::PlaneTask(128.0, 0.0, 0.0, 0.8, surface), hmmwv,
                        test::FlatStart(hmmwv, -20.0, 0.01), test::BenchSoil(grid_m));
 }
@@ -56,8 +56,8 @@ struct DriveResult {
 
 // Settle 2 s, then P speed control (target 4 m/s) for 10 s; speed and sinkage averaged over the
 // last 5 s.
-DriveResult DriveFlat(SurfaceClass surface, double grid_m, double wheel_width_m = 0.0) {
-  test::SoilSim d = FlatDrive(surface, grid_m, wheel_width_m);
+DriveResult DriveFlat(SurfaceClass surface, double grid_m, double soil_footprint_m = 0.0) {
+  test::SoilSim d = FlatDrive(surface, grid_m, soil_footprint_m);
   vehicles::DriverInputs idle;
   for (int k = 0; k < 400; ++k) d.Step(idle);
   DriveResult r{d.MeanSinkage(), 0.0, 0.0};
@@ -114,7 +114,7 @@ TEST_P(SoilFlatDrive, SpeedAndSinkageMatchTheOriginalsRuns) {
 // height, reads -1.5 mm on its own flat rigid run (front spindles 0.470 m, rear 0.467 m = r: its
 // front camber, VehicleStatic.TheReferencesSpindleHeightsAreItsFrontCamber), so its zero is
 // -1.5 mm. With both, vb meets the 25 % on every soil and grid, sand included; vb's
-// default keeps the tire's true width.
+// default keeps the tire's true width (data/vehicles/hmmwv_chrono.yaml has the original's).
 TEST_P(SoilFlatDrive, TheOriginalsFootprintExplainsItsSinkage) {
   const double grid_m = GetParam();
   constexpr double kChronoEnvelope_m = 0.03;

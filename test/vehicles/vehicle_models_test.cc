@@ -89,6 +89,50 @@ TEST(VehicleData, TmeasyVariantMatchesHmmwvExceptTire) {
   EXPECT_EQ(b.tire.model, TireModel::kTMeasy);
 }
 
+// data/vehicles/hmmwv_chrono.yaml must stay the HMMWV of hmmwv.yaml with exactly the original's
+// four artefacts (its header): Chrono's chassis box, the unreacted shaft torque, no hold after a
+// shift, the envelope-widened soil footprint.
+TEST(VehicleData, ChronoVariantIsTheHmmwvWithTheOriginalsFourArtefacts) {
+  const VehicleParams a = test::Hmmwv();
+  const VehicleParams b =
+      io::LoadVehicle(std::string(VB_SOURCE_DIR) + "/data/vehicles/hmmwv_chrono.yaml");
+  EXPECT_EQ(a.chassis.mass_kg, b.chassis.mass_kg);
+  EXPECT_EQ(a.chassis.com_B, b.chassis.com_B);
+  EXPECT_EQ(a.chassis.inertia_kgm2, b.chassis.inertia_kgm2);
+  ASSERT_EQ(a.axles.size(), b.axles.size());
+  for (size_t i = 0; i < a.axles.size(); ++i) {
+    EXPECT_EQ(a.axles[i].x_m, b.axles[i].x_m);
+    EXPECT_EQ(a.axles[i].half_track_m, b.axles[i].half_track_m);
+    EXPECT_EQ(a.axles[i].suspension.spring_stiffness_npm, b.axles[i].suspension.spring_stiffness_npm);
+    EXPECT_EQ(a.axles[i].suspension.bump_travel_m, b.axles[i].suspension.bump_travel_m);
+    EXPECT_EQ(a.axles[i].brake_torque_nm, b.axles[i].brake_torque_nm);
+  }
+  EXPECT_EQ(a.steering.max_pinion_angle_rad, b.steering.max_pinion_angle_rad);
+  EXPECT_EQ(a.wheel.radius_m, b.wheel.radius_m);
+  EXPECT_EQ(a.wheel.width_m, b.wheel.width_m);
+  EXPECT_EQ(a.wheel.mass_kg, b.wheel.mass_kg);
+  EXPECT_EQ(a.tire.model, b.tire.model);
+  EXPECT_EQ(a.tire.friction, b.tire.friction);
+  EXPECT_EQ(a.engine.map.size(), b.engine.map.size());
+  EXPECT_EQ(a.transmission.forward_ratios, b.transmission.forward_ratios);
+  EXPECT_EQ(a.transmission.upshift_rpm, b.transmission.upshift_rpm);
+  EXPECT_EQ(a.driveline.lock_torque_limit_nm, b.driveline.lock_torque_limit_nm);
+  EXPECT_EQ(a.driveline.conical_ratio, b.driveline.conical_ratio);
+  // the four artefacts
+  ASSERT_EQ(b.chassis.envelope.size(), 1u);  // Chrono's 2.0 x 1.0 x 0.2 m box at (0, 0, 0.1)
+  for (const Vec3& p : b.chassis.envelope[0].points_B) {
+    EXPECT_EQ(std::abs(p.x()), 1.0);
+    EXPECT_EQ(std::abs(p.y()), 0.5);
+    EXPECT_TRUE(p.z() == 0.0 || p.z() == 0.2);
+  }
+  EXPECT_TRUE(a.driveline.engine_block_reaction);
+  EXPECT_FALSE(b.driveline.engine_block_reaction);
+  EXPECT_EQ(a.transmission.min_time_in_gear_s, 0.3);
+  EXPECT_EQ(b.transmission.min_time_in_gear_s, 0.0);
+  EXPECT_EQ(a.wheel.soil_footprint_width_m, a.wheel.width_m);
+  EXPECT_DOUBLE_EQ(b.wheel.soil_footprint_width_m, b.wheel.width_m + 2.0 * 0.03);
+}
+
 TEST(ShiftLogic, HoldTimeAndGroundSpeedUpshift) {
   TransmissionParams tr;
   tr.forward_ratios = {0.2, 0.4};

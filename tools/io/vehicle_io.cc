@@ -325,13 +325,17 @@ vehicles::SuspensionParams ReadSuspension(const StrictNode& node, bool steered) 
 }
 
 vehicles::WheelParams ReadWheel(const StrictNode& node) {
-  const StrictMap m = node.AsMap({"radius_m", "width_m", "mass_kg", "inertia_kgm2"});
+  const StrictMap m =
+      node.AsMap({"radius_m", "width_m", "mass_kg", "inertia_kgm2", "soil_footprint_width_m"});
   using P = vehicles::WheelParams;
   P p;
   ReadKeys(m, &p, {{"radius_m", kPositive, &P::radius_m},
                    {"width_m", kPositive, &P::width_m},
                    {"mass_kg", kPositive, &P::mass_kg},
                    {"inertia_kgm2", kPositiveVec3, &P::inertia_kgm2}});
+  p.soil_footprint_width_m = m.Has("soil_footprint_width_m")
+                                 ? m.Required("soil_footprint_width_m").AsPositive()
+                                 : p.width_m;
   return p;
 }
 
