@@ -9,10 +9,19 @@ solved and the other did not, with the other's failure. Markdown on stdout.
 """
 import glob
 import json
+import math
 import os
 import re
 import sys
 from collections import defaultdict
+
+
+def sign_test_p(a, b):
+    """Two-sided exact sign test on a discordant pairs one way and b the other (p = 1 if none)."""
+    n, k = a + b, min(a, b)
+    if n == 0:
+        return 1.0
+    return min(1.0, 2.0 * sum(math.comb(n, i) for i in range(k + 1)) / 2.0 ** n)
 
 
 def main():
@@ -108,7 +117,8 @@ def main():
                       and trials[k + (b,)]["status"] != "success"]
             only_b = [k for k in keys if trials[k + (b,)]["status"] == "success"
                       and trials[k + (a,)]["status"] != "success"]
-            print(f"{a} vs {b}: {len(only_a)} solved only by {a}, {len(only_b)} only by {b}")
+            print(f"{a} vs {b}: {len(only_a)} solved only by {a}, {len(only_b)} only by {b} "
+                  f"(two-sided sign test p = {sign_test_p(len(only_a), len(only_b)):.2g})")
             for name, lst, other in ((a, only_a, b), (b, only_b, a)):
                 why = defaultdict(int)
                 for k in lst:
