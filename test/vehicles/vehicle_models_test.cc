@@ -63,39 +63,10 @@ TEST(Tmeasy, CurveShapeAndLoadInterpolation) {
   EXPECT_LT(GeneralisedForce(at_pn, 0.5 * (at_pn.sm + at_pn.ss)), at_pn.fm);
 }
 
-// data/vehicles/hmmwv_tmeasy.yaml must stay the HMMWV of hmmwv.yaml with another tire.
-TEST(VehicleData, TmeasyVariantMatchesHmmwvExceptTire) {
-  const VehicleParams a = test::Hmmwv(), b = test::HmmwvTmeasy();
-  EXPECT_EQ(a.chassis.mass_kg, b.chassis.mass_kg);
-  EXPECT_EQ(a.chassis.com_B, b.chassis.com_B);
-  ASSERT_EQ(a.axles.size(), b.axles.size());
-  for (size_t i = 0; i < a.axles.size(); ++i) {
-    EXPECT_EQ(a.axles[i].x_m, b.axles[i].x_m);
-    EXPECT_EQ(a.axles[i].suspension.spring_stiffness_npm, b.axles[i].suspension.spring_stiffness_npm);
-    EXPECT_EQ(a.axles[i].suspension.bump_travel_m, b.axles[i].suspension.bump_travel_m);
-    EXPECT_EQ(a.axles[i].brake_torque_nm, b.axles[i].brake_torque_nm);
-  }
-  EXPECT_EQ(a.steering.max_pinion_angle_rad, b.steering.max_pinion_angle_rad);
-  EXPECT_EQ(a.wheel.mass_kg, b.wheel.mass_kg);
-  EXPECT_EQ(a.engine.map.size(), b.engine.map.size());
-  EXPECT_EQ(a.transmission.forward_ratios, b.transmission.forward_ratios);
-  EXPECT_EQ(a.transmission.min_time_in_gear_s, b.transmission.min_time_in_gear_s);
-  EXPECT_EQ(a.driveline.lock_torque_limit_nm, b.driveline.lock_torque_limit_nm);
-  EXPECT_EQ(a.driveline.driveshaft_inertia_kgm2, b.driveline.driveshaft_inertia_kgm2);
-  EXPECT_EQ(a.driveline.central_box_inertia_kgm2, b.driveline.central_box_inertia_kgm2);
-  EXPECT_EQ(a.driveline.axle_shaft_inertia_kgm2, b.driveline.axle_shaft_inertia_kgm2);
-  EXPECT_EQ(a.driveline.axle_box_inertia_kgm2, b.driveline.axle_box_inertia_kgm2);
-  EXPECT_EQ(a.tire.model, TireModel::kRigid);
-  EXPECT_EQ(b.tire.model, TireModel::kTMeasy);
-}
-
-// data/vehicles/hmmwv_chrono.yaml must stay the HMMWV of hmmwv.yaml with exactly the original's
-// four artefacts (its header): Chrono's chassis box, the unreacted shaft torque, no hold after a
-// shift, the envelope-widened soil footprint.
-TEST(VehicleData, ChronoVariantIsTheHmmwvWithTheOriginalsFourArtefacts) {
-  const VehicleParams a = test::Hmmwv();
-  const VehicleParams b =
-      io::LoadVehicle(std::string(VB_SOURCE_DIR) + "/data/vehicles/hmmwv_chrono.yaml");
+// What a variant of the HMMWV file (hmmwv_tmeasy, hmmwv_chrono) keeps from hmmwv.yaml: chassis
+// mass properties, axles and suspensions, steering, wheel mass, engine, gearbox ratios and
+// driveline parameters.
+void ExpectTheSameHmmwv(const VehicleParams& a, const VehicleParams& b) {
   EXPECT_EQ(a.chassis.mass_kg, b.chassis.mass_kg);
   EXPECT_EQ(a.chassis.com_B, b.chassis.com_B);
   EXPECT_EQ(a.chassis.inertia_kgm2, b.chassis.inertia_kgm2);
@@ -108,16 +79,39 @@ TEST(VehicleData, ChronoVariantIsTheHmmwvWithTheOriginalsFourArtefacts) {
     EXPECT_EQ(a.axles[i].brake_torque_nm, b.axles[i].brake_torque_nm);
   }
   EXPECT_EQ(a.steering.max_pinion_angle_rad, b.steering.max_pinion_angle_rad);
-  EXPECT_EQ(a.wheel.radius_m, b.wheel.radius_m);
-  EXPECT_EQ(a.wheel.width_m, b.wheel.width_m);
   EXPECT_EQ(a.wheel.mass_kg, b.wheel.mass_kg);
-  EXPECT_EQ(a.tire.model, b.tire.model);
-  EXPECT_EQ(a.tire.friction, b.tire.friction);
   EXPECT_EQ(a.engine.map.size(), b.engine.map.size());
   EXPECT_EQ(a.transmission.forward_ratios, b.transmission.forward_ratios);
   EXPECT_EQ(a.transmission.upshift_rpm, b.transmission.upshift_rpm);
-  EXPECT_EQ(a.driveline.lock_torque_limit_nm, b.driveline.lock_torque_limit_nm);
   EXPECT_EQ(a.driveline.conical_ratio, b.driveline.conical_ratio);
+  EXPECT_EQ(a.driveline.lock_torque_limit_nm, b.driveline.lock_torque_limit_nm);
+  EXPECT_EQ(a.driveline.driveshaft_inertia_kgm2, b.driveline.driveshaft_inertia_kgm2);
+  EXPECT_EQ(a.driveline.central_box_inertia_kgm2, b.driveline.central_box_inertia_kgm2);
+  EXPECT_EQ(a.driveline.axle_shaft_inertia_kgm2, b.driveline.axle_shaft_inertia_kgm2);
+  EXPECT_EQ(a.driveline.axle_box_inertia_kgm2, b.driveline.axle_box_inertia_kgm2);
+}
+
+// data/vehicles/hmmwv_tmeasy.yaml must stay the HMMWV of hmmwv.yaml with another tire.
+TEST(VehicleData, TmeasyVariantMatchesHmmwvExceptTire) {
+  const VehicleParams a = test::Hmmwv(), b = test::HmmwvTmeasy();
+  ExpectTheSameHmmwv(a, b);
+  EXPECT_EQ(a.transmission.min_time_in_gear_s, b.transmission.min_time_in_gear_s);
+  EXPECT_EQ(a.tire.model, TireModel::kRigid);
+  EXPECT_EQ(b.tire.model, TireModel::kTMeasy);
+}
+
+// data/vehicles/hmmwv_chrono.yaml must stay the HMMWV of hmmwv.yaml with exactly the original's
+// four artefacts (its header): Chrono's chassis box, the unreacted shaft torque, no hold after a
+// shift, the envelope-widened soil footprint.
+TEST(VehicleData, ChronoVariantIsTheHmmwvWithTheOriginalsFourArtefacts) {
+  const VehicleParams a = test::Hmmwv();
+  const VehicleParams b =
+      io::LoadVehicle(std::string(VB_SOURCE_DIR) + "/data/vehicles/hmmwv_chrono.yaml");
+  ExpectTheSameHmmwv(a, b);
+  EXPECT_EQ(a.wheel.radius_m, b.wheel.radius_m);
+  EXPECT_EQ(a.wheel.width_m, b.wheel.width_m);
+  EXPECT_EQ(a.tire.model, b.tire.model);
+  EXPECT_EQ(a.tire.friction, b.tire.friction);
   // the four artefacts
   ASSERT_EQ(b.chassis.envelope.size(), 1u);  // Chrono's 2.0 x 1.0 x 0.2 m box at (0, 0, 0.1)
   for (const Vec3& p : b.chassis.envelope[0].points_B) {
