@@ -131,9 +131,10 @@ int main(int argc, char** argv) {
     }
   }
   if (!task_paths.empty()) {
-    std::printf("\n| task | elevation | %s | %s | %s | %s | %s | %s |\n|---|---|---|---|---|---|---|---|\n",
-                kMetricNames[0], kMetricNames[1], kMetricNames[2], kMetricNames[3],
-                kMetricNames[4], kMetricNames[5]);
+    std::printf("\n| task | elevation | %s | %s | %s | %s | %s | %s |\n", kMetricNames[0],
+                kMetricNames[1], kMetricNames[2], kMetricNames[3], kMetricNames[4],
+                kMetricNames[5]);
+    std::printf("|---|---|---|---|---|---|---|---|\n");
   }
   for (const std::string& path : task_paths) {
     vb::terrain::TaskSpec task;

@@ -114,7 +114,8 @@ def main():
         print(f"| {level} | {100 * actual:.1f} % | {100 * a:.1f} % | {100 * s:.1f} % | {100 * c:.1f} % "
               f"| {100 * m:.1f} % |")
     print(f"| all | {100 * y.mean():.1f} % | {100 * overall(pred, 0):.1f} % | "
-          f"{100 * overall(pred, 1):.1f} % | {100 * overall(pred, 2):.1f} % | {100 * overall(pred, 4):.1f} % |")
+          f"{100 * overall(pred, 1):.1f} % | {100 * overall(pred, 2):.1f} % | "
+          f"{100 * overall(pred, 4):.1f} % |")
 
     # Bootstrap over worlds (each world keeps its ten trials): the spread of (b) - (a) and (c) - (a).
     rng = np.random.default_rng(1)

@@ -501,7 +501,8 @@ void Vehicle::Synchronize(double dt) {
       // wheel plane's sideways reach at its bottom), with a margin for the soil's node cells
       const double reach_m = std::max(contact_radius_m, wp.radius_m) *
                                  (1.0 + std::abs(axis_W.z())) +
-                             0.5 * std::max({contact_width_m, wp.width_m, wp.soil_footprint_width_m}) +
+                             0.5 * std::max({contact_width_m, wp.width_m,
+                                             wp.soil_footprint_width_m}) +
                              kSeamMargin_m;
       mix = terrain_.MixAround(wheel.position.x(), wheel.position.y(), reach_m);
     }
