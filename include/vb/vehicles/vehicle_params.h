@@ -97,8 +97,8 @@ struct WheelParams {
   double radius_m = 0.0;
   double width_m = 0.0;
   // The width the soil feels (SCM contact); the loader sets it to width_m unless the file gives
-  // it. The original's Chrono widens it by its collision envelope (docs/vehicles.md,
-  // "hmmwv_chrono").
+  // it, and 0 (parameters built in code) means width_m. The original's Chrono widens it by its
+  // collision envelope (docs/vehicles.md, "hmmwv_chrono").
   double soil_footprint_width_m = 0.0;
   double mass_kg = 0.0;             // rim + tire
   Vec3 inertia_kgm2 = Vec3::Ones(); // (x, spin y, z)
