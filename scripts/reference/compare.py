@@ -122,6 +122,21 @@ def parting_time(a, b):
     return float(grid[apart[0]]) if len(apart) else None
 
 
+def leaving_time(a, b):
+    """First time b is more than 1 m from any point of a's path (a lag along the path does not
+    count), or None."""
+    def dense(run):
+        grid = np.arange(0.0, run.t[-1] + 1e-9, 0.05)
+        return grid, np.c_[np.interp(grid, run.t, run.xy[:, 0]), np.interp(grid, run.t, run.xy[:, 1])]
+    _, pa = dense(a)
+    tb, pb = dense(b)
+    if len(pa) == 0 or len(pb) == 0:
+        return None
+    d = np.min(np.linalg.norm(pb[:, None, :] - pa[None, :, :], axis=2), axis=1)
+    off = np.nonzero(d > PART_DISTANCE_M)[0]
+    return float(tb[off[0]]) if len(off) else None
+
+
 def matrix_md(pairs, title):
     """pairs: (original outcome, vb outcome) per trial."""
     rows = [o for o in OUTCOMES if any(p[0] == o for p in pairs)]
@@ -200,7 +215,7 @@ BASE_FIELDS = ["world", "pair", "system", "level", "terrain", "original_vb_rules
 
 def fields(labels):
     return BASE_FIELDS + [f"{label}{suffix}" for label in labels
-                          for suffix in ("", "_progress_m", "_parts_at_s", "_max_roll_deg")]
+                          for suffix in ("", "_progress_m", "_parts_at_s", "_leaves_path_at_s", "_max_roll_deg")]
 
 
 def main():
@@ -244,7 +259,11 @@ def main():
             row[f"{label}"] = v.status_vb_rules
             row[f"{label}_progress_m"] = round(progress_m(v, o.extra["start"], o.extra["goal"]), 1)
             row[f"{label}_parts_at_s"] = parting_time(o, v)
+            row[f"{label}_leaves_path_at_s"] = leaving_time(o, v)
             row[f"{label}_max_roll_deg"] = round(float(np.max(np.abs(v.roll))), 1)
+            for k in ("_parts_at_s", "_leaves_path_at_s"):
+                if row[f"{label}{k}"] is not None:
+                    row[f"{label}{k}"] = round(row[f"{label}{k}"], 2)
         table.append(row)
         disagree = any(v.status_vb_rules != o.status_vb_rules for v in matched[:1])
         if matched and (args.pictures == "all" or (args.pictures == "disagree" and disagree)):

@@ -6,7 +6,8 @@ usage:
   run_original.py WORLD PAIR [--system pid|eh|mppi] [--out DIR] [--seed S] [--max-time S]
   run_original.py --tasks FILE [--out DIR] [--trial-timeout S]      batch, resumable
 
-  FILE: one trial per line, "WORLD PAIR [SYSTEM]" (SYSTEM default pid; '#' starts a comment).
+  FILE: one trial per line, "WORLD PAIR [SYSTEM]" (SYSTEM default pid; '#' starts a comment);
+  several --tasks files run one after the other (scripts/reference/tasks/).
   --out DIR (default results/reference): per trial orig_w<W>_p<P>_<system>.json (record) and
   ..._traj.csv (every 10th physics step, 20 Hz, and the last state); both written atomically,
   the trajectory first, so a record implies its trajectory. The batch skips recorded trials, runs
@@ -228,12 +229,16 @@ def read_tasks(path):
         system = fields[2] if len(fields) == 3 else "pid"
         if system not in SYSTEMS:
             raise SystemExit(f"{path}:{n}: unknown system '{system}' (valid: {', '.join(SYSTEMS)})")
-        tasks.append((int(fields[0]), int(fields[1]), system))
+        task = (int(fields[0]), int(fields[1]), system)
+        if task not in tasks:  # a trial listed twice runs once
+            tasks.append(task)
     return tasks
 
 
 def run_batch(args):
-    tasks = read_tasks(args.tasks)
+    tasks = []
+    for path in args.tasks:
+        tasks += [t for t in read_tasks(path) if t not in tasks]
     out = Path(args.out)
     (out / "logs").mkdir(parents=True, exist_ok=True)
     todo = [t for t in tasks if not (out / f"{trial_name(*t)}.json").exists()]
@@ -265,8 +270,9 @@ def run_batch(args):
 
 
 # ----------------------------------------------------------------------------------------- main
-def enter_harness_env(cache):
-    """Re-executes this script in the cache's venv with PyChrono on its paths (once)."""
+def enter_harness_env(cache, script=None):
+    """Re-executes `script` (default this one) in the cache's venv with PyChrono on its paths,
+    unless already there."""
     if os.environ.get("VB_REFERENCE_INSIDE") == str(cache):
         return
     build = cache / "chrono-build"
@@ -278,7 +284,8 @@ def enter_harness_env(cache):
     env["PYTHONPATH"] = os.pathsep.join([str(build / "bin"), env.get("PYTHONPATH", "")]).rstrip(os.pathsep)
     env["LD_LIBRARY_PATH"] = os.pathsep.join([str(build / "lib"), env.get("LD_LIBRARY_PATH", "")]).rstrip(os.pathsep)
     python = str(cache / "venv/bin/python")
-    os.execve(python, [python, str(Path(__file__).resolve())] + sys.argv[1:], env)
+    script = Path(script or __file__).resolve()
+    os.execve(python, [python, str(script)] + sys.argv[1:], env)
 
 
 def main():
@@ -286,7 +293,7 @@ def main():
     ap.add_argument("world", nargs="?", type=int)
     ap.add_argument("pair", nargs="?", type=int)
     ap.add_argument("--system", default="pid", choices=sorted(SYSTEMS))
-    ap.add_argument("--tasks", help="batch: a file of 'WORLD PAIR [SYSTEM]' lines")
+    ap.add_argument("--tasks", nargs="+", help="batch: files of 'WORLD PAIR [SYSTEM]' lines")
     ap.add_argument("--out", default="results/reference")
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--max-time", type=float, default=60.0)
