@@ -9,7 +9,7 @@ usage: compare.py --original DIR [DIR ...] --vb DIR [DIR ...] --out DIR [--data 
 --original: run_original.py output directories (orig_w<W>_p<P>_<sys>.json + _traj.csv); also
   reads the earlier probe's format (w<W>_p<P>.json with 'rec' and a 10 Hz 'traj').
 --vb: vb_batch directories (trials/orig<W>_p<P>_s0_<vehicle>_<system>.json + _traj.csv); each is
-  labelled by its directory name. The first is the one the matrices and pictures use first.
+  labelled by its directory name; vb's <system>_original is matched with the original's <system>.
 --tasks: only these "WORLD PAIR [SYSTEM]" lines (default: every original trial found).
 --data: the original sampled_maps directory, for the world images under the pictures.
 Writes OUT/report.md (tables), OUT/trials.csv (one row per original trial and vb run) and
@@ -99,7 +99,8 @@ def load_vb(d):
             continue
         c = _columns(traj)
         status = r["status"]
-        runs[(int(m[1]), r["pair"], r["system"])] = Run(
+        system = r["system"].removesuffix("_original")  # vb's pid_original beside the original's pid
+        runs[(int(m[1]), r["pair"], system)] = Run(
             d.name, int(m[1]), r["pair"], r["system"], status, status, c["t_s"],
             np.c_[c["x_m"], c["y_m"]], c["z_m"], c["roll_deg"], c["pitch_deg"], r)
     return runs
