@@ -285,9 +285,11 @@ def main():
         fails = [(o, v) for o, v in pairs if v.status_vb_rules != "success"]
         agree = sum(o.status_vb_rules == v.status_vb_rules for o, v in fails)
         md.append(f"Where {label} fails: agree {agree} / {len(fails)}.\n")
-    md.append("## Outcome mix (vb's rules)\n")
-    md.append(mix_md([("original", [orig[k].status_vb_rules for k in keys])]
-                     + [(label, [v.status_vb_rules for _, v in per_label[label]]) for label in labels]))
+    for system in sorted({k[2] for k in keys}):
+        md.append(f"## Outcome mix, {system} (vb's rules; the original's trials and vb's on the same tasks)\n")
+        md.append(mix_md([("original", [orig[k].status_vb_rules for k in keys if k[2] == system])]
+                         + [(label, [v.status_vb_rules for o, v in per_label[label] if o.system == system])
+                            for label in labels if any(o.system == system for o, _ in per_label[label])]))
     md.append("\n## Per trial\n")
     cols = fields(labels)
     md.append("| " + " | ".join(cols) + " |\n|" + "---|" * len(cols))

@@ -4,14 +4,15 @@
 # vb_batch, for the vehicle/rules combinations that the comparison reads. Resumable (vb_batch).
 #
 #   scripts/reference/run_vb.sh [--data DIR] [--worlds "1 5 ..."] [--out DIR] [--jobs N]
-#                               [--system pid] [--build DIR]
+#                               [--systems "pid pid_original"] [--build DIR]
 #
 # --data: an original sampled_maps directory (default: the calibration worlds beside the repo);
-# --worlds: default every world of --data; --out: default results/reference.
+# --worlds: default every world of --data; --out: default results/reference; --systems: vb
+# systems to run (e.g. add "eh mppi eh_original mppi_original" for the EH/MPPI subset).
 # Writes OUT/vb_tasks/origN.yaml (imported; never committed) and one vb_batch directory per run:
 #   OUT/vb_<system>_hmmwv           vb's default HMMWV, vb's rules
 #   OUT/vb_<system>_hmmwv_chrono    hmmwv_chrono (the Chrono model's artefacts), vb's rules
-#   OUT/vb_<system>_hmmwv_rules-verti_bench   vb's HMMWV under the original's rules
+#   OUT/vb_pid_hmmwv_rules-verti_bench   vb's PID and HMMWV under the original's rules
 # Trajectories every 10 steps (20 Hz), as run_original.py records.
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
@@ -19,7 +20,7 @@ repo="$(cd "$here/../.." && pwd)"
 data="$repo/../shared/verti_bench_calibration/envs/data/BenchMaps/sampled_maps"
 out="results/reference"
 jobs=2
-system=pid
+systems="pid pid_original"
 build="$repo/build"
 worlds=""
 while [ $# -gt 0 ]; do
@@ -28,10 +29,10 @@ while [ $# -gt 0 ]; do
     --worlds) worlds="$2"; shift 2 ;;
     --out) out="$2"; shift 2 ;;
     --jobs) jobs="$2"; shift 2 ;;
-    --system) system="$2"; shift 2 ;;
+    --systems) systems="$2"; shift 2 ;;
     --build) build="$2"; shift 2 ;;
-    -h|--help) sed -n '2,17p' "$0"; exit 0 ;;
-    *) echo "run_vb: unknown option $1 (valid: --data, --worlds, --out, --jobs, --system, --build)" >&2; exit 2 ;;
+    -h|--help) sed -n '2,19p' "$0"; exit 0 ;;
+    *) echo "run_vb: unknown option $1 (valid: --data, --worlds, --out, --jobs, --systems, --build)" >&2; exit 2 ;;
   esac
 done
 cfg="$data/Configs/Final"
@@ -53,11 +54,13 @@ for w in $worlds; do
   fi
   tasks+=("$t")
 done
-run() {  # run NAME VEHICLE RULES
+run() {  # run NAME SYSTEM VEHICLE RULES
   echo "run_vb: $1 (${#tasks[@]} worlds, all pairs)"
-  "$build/tools/vb_batch" "${tasks[@]}" --vehicles "$2" --systems "$system" --rules "$3" \
+  "$build/tools/vb_batch" "${tasks[@]}" --vehicles "$3" --systems "$2" --rules "$4" \
     --traj-every 10 --jobs "$jobs" --quiet --out "$out/$1"
 }
-run "vb_${system}_hmmwv" hmmwv vb
-run "vb_${system}_hmmwv_chrono" hmmwv_chrono vb
-run "vb_${system}_hmmwv_rules-verti_bench" hmmwv verti_bench
+for system in $systems; do
+  run "vb_${system}_hmmwv" "$system" hmmwv vb
+  run "vb_${system}_hmmwv_chrono" "$system" hmmwv_chrono vb
+done
+run "vb_pid_hmmwv_rules-verti_bench" pid hmmwv verti_bench
