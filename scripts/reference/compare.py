@@ -179,7 +179,7 @@ def picture(path, key, orig, vbs, data_dir):
         if img.exists():
             ax.imshow(np.asarray(Image.open(img).convert("L")), cmap="gray",
                       extent=[-64.5, 64.5, -64.5, 64.5], origin="upper", alpha=0.8)
-    colors = ["tab:red", "tab:blue", "tab:green", "tab:purple"]
+    colors = ["tab:red", "tab:blue", "tab:green", "tab:purple", "tab:orange", "tab:brown"]
     runs = [orig] + vbs
     for run, col in zip(runs, colors):
         ax.plot(run.xy[:, 0], run.xy[:, 1], color=col, lw=1.6,
@@ -192,9 +192,9 @@ def picture(path, key, orig, vbs, data_dir):
     ax.set_ylim(-65, 65)
     ax.set_aspect("equal")
     ax.legend(loc="lower left", fontsize=7)
-    ax.set_title(f"world {key[0]} pair {key[1]} ({rec.get('level', '')} "
-                 f"{rec.get('terrain_type', '')}), {key[2]}: top-down (start o, 10 m goal circle)",
-                 fontsize=8)
+    kind = f" ({rec['level']} {rec['terrain_type']})" if rec.get("level") else ""
+    ax.set_title(f"world {key[0]} pair {key[1]}{kind}, {key[2]}: top-down (start o, 10 m goal "
+                 "circle, end x)", fontsize=8)
     for i, (field, name) in enumerate((("roll", "roll"), ("pitch", "pitch"))):
         a2 = fig.add_axes([0.53, 0.56 - 0.48 * i, 0.45, 0.38])
         for run, col in zip(runs, colors):
