@@ -77,7 +77,7 @@ def make_height_map(cache, world):
     for iy, y in enumerate(ys):
         for ix, x in enumerate(xs):
             heights[iy, ix] = ground.GetHeight(chrono.ChVector3d(x, y, h_max))
-    tmp = path + ".tmp.npy"
-    np.save(tmp, heights)
+    tmp = os.path.join(os.path.dirname(path), "." + os.path.basename(path) + ".tmp.npy")
+    np.save(tmp, heights)  # hidden: the runtime's glob height{N}_*.npy must not see it
     os.replace(tmp, path)
     return path

@@ -119,15 +119,19 @@ def run_trial(args):
                                        w.GetSpindle().GetPos().y)
                          - (w.GetSpindle().GetPos().z - TIRE_RADIUS_M), 4) for w in wheels]
     rows, extremes = [], {"roll": 0.0, "pitch": 0.0}
-    state = {"k": 0, "last": None}
+    state = {"k": 0, "last": None, "scm_forces": bool(scm)}
 
     def sample(t, p, r):
         forces = []
         for w in wheels:
-            f = w.GetSpindle().GetContactForce()
+            f = w.GetSpindle().GetContactForce()  # rigid ground and obstacles (Bullet contacts)
             fx, fy, fz = f.x, f.y, f.z
-            for s in scm:
-                g = w.GetTire().ReportTireForce(s).force
+            for s in scm if state["scm_forces"] else ():
+                try:  # the soil's force on the wheel is a load, not a contact
+                    g = w.GetTire().ReportTireForce(s).force
+                except (TypeError, AttributeError):  # not reachable through this SWIG build
+                    state["scm_forces"] = False
+                    break
                 fx, fy, fz = fx + g.x, fy + g.y, fz + g.z
             forces.append(round(math.sqrt(fx * fx + fy * fy + fz * fz), 1))
         inputs = sim.driver_inputs
@@ -201,6 +205,7 @@ def run_trial(args):
         "progress_m": progress,
         "wall_s": wall_s, "height_map_s": heights_s,
         "trajectory_columns": COLUMNS, "trajectory_every_steps": SAMPLE_EVERY,
+        "contact_forces_include_soil": state["scm_forces"] if scm else None,
         "original_log_tail": log.getvalue()[-600:],
     }
     out = Path(args.out)
