@@ -149,10 +149,16 @@ std::vector<std::pair<double, double>> OriginalBezier(
     const double t = j == kBezierSamples - 1 ? 1.0 : j * step;
     double row = 0.0, col = 0.0;
     for (int i = 0; i <= degree; ++i) {
-      // comb(n, i) * t**i * (1 - t)**(n - i); a binomial beyond ~1e308 (degree > 1000) times
-      // powers that underflow is 0 (no NaN)
+      // comb(n, i) * t**i * (1 - t)**(n - i); where the binomial overflows (past ~1030 cells) or
+      // the powers underflow, the product in log space (the ends t = 0, 1 stay exact)
       const double p = std::pow(t, i) * std::pow(1.0 - t, degree - i);
-      const double w = p == 0.0 ? 0.0 : binom[i] * p;
+      double w = binom[i] * p;
+      const bool interior = t > 0.0 && t < 1.0;
+      if (interior && (!std::isfinite(w) || p < 1e-290)) {  // overflow or underflow
+        w = std::exp(std::lgamma(degree + 1.0) - std::lgamma(i + 1.0) -
+                     std::lgamma(degree - i + 1.0) + i * std::log(t) +
+                     (degree - i) * std::log1p(-t));
+      }
       row += w * control[i].first;
       col += w * control[i].second;
     }
