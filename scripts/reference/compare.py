@@ -210,6 +210,45 @@ def picture(path, key, orig, vbs, data_dir):
     plt.close(fig)
 
 
+def stratum_sizes(data_dir):
+    """Tasks per (level, terrain type) of the original worlds in data_dir (10 pairs a world)."""
+    import yaml
+
+    sizes = Counter()
+    for path in Path(data_dir, "Configs/Final").glob("config*_*.yaml"):
+        with open(path) as f:
+            cfg = yaml.safe_load(f)
+        sizes[(cfg["terrain"]["difficulty"], cfg["terrain_type"])] += len(cfg["positions"])
+    return sizes
+
+
+def weighted_mix_md(keys, orig, per_label, labels, strata):
+    """The outcome mix of a stratified sample weighted back to the worlds' strata (PID only)."""
+    def mix(statuses_by_key):
+        per = defaultdict(Counter)
+        for k, st in statuses_by_key.items():
+            per[(orig[k].extra["level"], orig[k].extra["terrain_type"])][st] += 1
+        total = sum(strata[s] for s in per)
+        out = Counter()
+        for s, c in per.items():
+            n = sum(c.values())
+            for o, v in c.items():
+                out[o] += strata[s] / total * v / n
+        return out
+    pid = [k for k in keys if k[2] == "pid"]
+    rows = [("original", mix({k: orig[k].status_vb_rules for k in pid}))]
+    for label in labels:
+        got = {(o.world, o.pair, o.system): v.status_vb_rules
+               for o, v in per_label[label] if o.system == "pid"}
+        if got:
+            rows.append((label, mix(got)))
+    lines = ["## Outcome mix weighted to the strata of the worlds (pid, vb's rules)\n",
+             "| runs | " + " | ".join(OUTCOMES[:4]) + " |", "|---|" + "---:|" * 4]
+    for label, m in rows:
+        lines.append(f"| {label} | " + " | ".join(f"{100 * m[o]:.1f} %" for o in OUTCOMES[:4]) + " |")
+    return "\n".join(lines) + "\n"
+
+
 BASE_FIELDS = ["world", "pair", "system", "level", "terrain", "original_vb_rules", "original_orig_rules",
                "original_progress_m", "original_max_roll_deg", "original_start_depth_m"]
 
@@ -285,6 +324,9 @@ def main():
         fails = [(o, v) for o, v in pairs if v.status_vb_rules != "success"]
         agree = sum(o.status_vb_rules == v.status_vb_rules for o, v in fails)
         md.append(f"Where {label} fails: agree {agree} / {len(fails)}.\n")
+    strata = stratum_sizes(args.data) if args.data else {}
+    if strata and all(orig[k].extra.get("level") for k in keys):
+        md.append(weighted_mix_md(keys, orig, per_label, labels, strata))
     for system in sorted({k[2] for k in keys}):
         md.append(f"## Outcome mix, {system} (vb's rules; the original's trials and vb's on the same tasks)\n")
         md.append(mix_md([("original", [orig[k].status_vb_rules for k in keys if k[2] == system])]
