@@ -14,7 +14,7 @@ namespace vb::controllers {
 
 std::vector<std::string> ControllerNames() {
   return {"pid", "eh", "mppi", "rl", "mcl", "acl", "wmvct", "mppi6", "tal", "tnt",
-          "eh_original", "mppi_original", "straight"};
+          "pid_original", "eh_original", "mppi_original", "straight"};
 }
 
 std::unique_ptr<Controller> MakeController(const std::string& name, const nn::ModelStore* models) {
@@ -25,6 +25,11 @@ std::unique_ptr<Controller> MakeController(const std::string& name, const nn::Mo
   if (name == "mppi6") return MakeHybridController(HybridSystem::kMppi6, name, models);
   if (name == "tal") return MakeHybridController(HybridSystem::kTal, name, models);
   if (name == "tnt") return MakeHybridController(HybridSystem::kTnt, name, models);
+  if (name == "pid_original") {
+    PidParams p;
+    p.original_planner = true;
+    return std::make_unique<PidController>(p, name);
+  }
   if (name == "eh_original") {
     EhParams p;
     p.original_left_regions = true;

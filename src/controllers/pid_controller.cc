@@ -31,6 +31,7 @@ ObservationConfig PidController::observation_config() const {
   ObservationConfig c;
   c.lookahead_m = params_.lookahead_m;
   c.replan_period_s = params_.replan_period_s;
+  c.original_planner = params_.original_planner;
   return c;
 }
 

@@ -34,7 +34,8 @@ Observation ObsAt(double t, const Vec2& local_goal, double yaw, double speed) {
 TEST(PidControllerTest, RegistryKnowsPid) {
   EXPECT_EQ(ControllerNames(),
             (std::vector<std::string>{"pid", "eh", "mppi", "rl", "mcl", "acl", "wmvct", "mppi6",
-                                      "tal", "tnt", "eh_original", "mppi_original", "straight"}));
+                                      "tal", "tnt", "pid_original", "eh_original",
+                                      "mppi_original", "straight"}));
   const io::DataDirModelStore models(VB_SOURCE_DIR "/data");   // the learned systems' weights
   for (const std::string& name : ControllerNames()) {
     ASSERT_NE(MakeController(name, &models), nullptr) << name;

@@ -37,6 +37,19 @@ TEST(BaselinesEpisodeTest, EhAndMppiGoAroundARock) {
   }
 }
 
+// pid_original plans as the original's code (terrain/original_planner.h): around the rock on a
+// smoothed line of its own, not vb's optimal A* path.
+TEST(BaselinesEpisodeTest, PidOriginalGoesAroundARockOnTheOriginalsPath) {
+  const terrain::TaskSpec task = RockOnTheLine();
+  TrialSpec spec;
+  spec.system = "pid_original";
+  const TrialResult r = RunTrial(task, test::Hmmwv(), spec);
+  EXPECT_EQ(r.status, TrialStatus::kSuccess) << r.message;
+  EXPECT_EQ(r.obstacle_contacts, 0);
+  spec.system = "pid";
+  EXPECT_NE(TrialDigest(RunTrial(task, test::Hmmwv(), spec)), TrialDigest(r));
+}
+
 TEST(BaselinesEpisodeTest, MppiTrialsRerunBitIdentically) {
   const terrain::TaskSpec task = RockOnTheLine();
   TrialSpec spec;

@@ -20,11 +20,11 @@ matrix:
   --systems LIST|all   mobility systems (default: pid): pid, eh, mppi (the paper's classical
                        baselines), rl, mcl, acl (policies trained in vb, docs/learning.md),
                        wmvct, mppi6, tal, tnt (the hybrid baselines, learned models from
-                       $VB_DATA_DIR/models), eh_original, mppi_original (the original code's
-                       variants, docs/baselines.md), straight (PID steering at the goal, not
-                       the path: a reference), oracle (the privileged expert; budget
-                       variants oracle-h<s>-r<s>-n<k>-e<0|1>; not in "all"); --system is the
-                       same flag
+                       $VB_DATA_DIR/models), pid_original, eh_original, mppi_original (the
+                       original code's variants, docs/baselines.md), straight (PID steering
+                       at the goal, not the path: a reference), oracle (the privileged
+                       expert; budget variants oracle-h<s>-r<s>-n<k>-e<0|1>; not in "all");
+                       --system is the same flag
   --perception LIST    perception presets, e.g. none,mild,moderate,severe (default: none, ground
                        truth); a preset of $VB_DATA_DIR/perception/ (docs/perception.md)
   --seeds LIST         trial seeds, e.g. 0-4 (default: 0)

@@ -34,8 +34,9 @@ options:
   --system NAME      mobility system (default: pid): pid, eh, mppi (the paper's classical
                      baselines), rl, mcl, acl (policies trained in vb, weights from
                      $VB_DATA_DIR/policies; docs/learning.md), wmvct, mppi6, tal, tnt (the
-                     hybrid baselines: learned models from $VB_DATA_DIR/models), eh_original,
-                     mppi_original (the original code's variants, docs/baselines.md), straight
+                     hybrid baselines: learned models from $VB_DATA_DIR/models), pid_original,
+                     eh_original, mppi_original (the original code's variants,
+                     docs/baselines.md), straight
                      (PID steering at the goal, not the path: a reference), oracle (the
                      privileged expert that plans with vb's own physics; budget variants
                      oracle-h<s>-r<s>-n<k>-e<0|1>, docs/baselines.md)

@@ -37,6 +37,11 @@ struct ObservationConfig {
   // only every decision period sets it to that period (the learned systems, 0.1 s) and saves a
   // crop per control step. Rebuilds fall on the same instants as the replans (t = 0, period, ...).
   double crop_period_s = 0.0;
+  // Plan the global path as the original's code does (terrain/original_planner.h: its obstacle
+  // map with the 129 m addressing, unit-cost A*, one Bezier over the whole path) instead of vb's
+  // optimal A*: the `pid_original` system (docs/baselines.md). Plans on the task's obstacles
+  // (ground truth), whatever the perception preset.
+  bool original_planner = false;
 };
 
 // Per wheel (axle-major: axle 0 left, axle 0 right, axle 1 left, ...).

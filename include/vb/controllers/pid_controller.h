@@ -20,6 +20,9 @@ struct PidParams {
   // Steer at the final goal instead of the local goal on the A* path (the "straight" reference
   // system: what a policy must beat to have learned anything about the terrain or obstacles).
   bool straight_to_goal = false;
+  // Follow the path the original's code plans (ObservationConfig::original_planner): the
+  // `pid_original` system.
+  bool original_planner = false;
 };
 
 // The speed controller shared by the path followers (Chrono's ChSpeedController with

@@ -1,7 +1,8 @@
 // Observation builder: the navigation follows the original's path followers (reference
 // §4.6, §7.1): A* on the inflated grid from the current position every 0.1 s (read off the
 // cost-to-goal field, as optimal as a search), a failed plan keeps the previous path, and the
-// local goal is the look-ahead point (terrain::LookAheadPoint).
+// local goal is the look-ahead point (terrain::LookAheadPoint). ObservationConfig::original_planner
+// plans as the original's code instead (terrain/original_planner.h).
 #include "vb/engine/runner/observation_builder.h"
 
 #include <algorithm>
@@ -42,6 +43,14 @@ void ObservationBuilder::Reset(const Vec2& goal_m, uint64_t trial_seed,
     const terrain::OccupancyGrid& grid = planning_grid();
     if (grid.rows > 0) goal_field_.emplace(grid, grid.CellOf(goal_m));
     field_goal_m_ = goal_m;
+  }
+  if (config_.original_planner && original_grid_task_ != &task) {
+    if (task.heights.rows < 2 || task.heights.cols < 2) {
+      throw InputError(task.source_file, 0, "system",
+                       "the original's planner needs the task's height grid (obstacle map size)");
+    }
+    original_grid_ = terrain::MakeOriginalPlannerGrid(task);
+    original_grid_task_ = &task;
   }
   nav_.path_m.clear();
   nav_.local_goal_index = 0;
@@ -100,9 +109,14 @@ void ObservationBuilder::Build(long k, double t_now_s, const vehicles::VehicleSt
   const double yaw_rad = obs->rpy.yaw_rad;
   if (t_s - nav_.last_replan_s >= config_.replan_period_s - kReplanTimeTolerance_s) {
     nav_.last_replan_s = t_s;
-    if (goal_field_) {
+    // The original's planner's grid is built by Reset with the task (a config set after it is a
+    // caller's error, not a reason to drive without a plan).
+    VB_DEMAND(!config_.original_planner || original_grid_.has_value());
+    if (config_.original_planner || goal_field_) {
       ++nav_.replan_count;
-      std::optional<std::vector<Vec2>> plan = goal_field_->PathFrom(position_m);
+      std::optional<std::vector<Vec2>> plan =
+          config_.original_planner ? terrain::OriginalPlanPath(*original_grid_, position_m, goal_m_)
+                                   : goal_field_->PathFrom(position_m);
       if (plan && !plan->empty()) {
         nav_.path_m = std::move(*plan);
         nav_.local_goal_index = 0;

@@ -11,6 +11,7 @@
 #include "vb/engine/error.h"
 #include "vb/engine/runner/perception.h"
 #include "vb/terrain/grid_planner.h"
+#include "vb/terrain/original_planner.h"
 #include "vb/terrain/gt_maps.h"
 #include "vb/vehicles/vehicle.h"
 
@@ -81,6 +82,10 @@ class ObservationBuilder {
   Vec2 goal_m_ = Vec2::Zero();
   std::optional<terrain::GoalDistanceField> goal_field_;
   std::optional<Vec2> field_goal_m_;   // goal the field was computed for
+  // ObservationConfig::original_planner: the original's obstacle map of the task planned on
+  // (built on the first Reset with that task).
+  std::optional<terrain::OriginalPlannerGrid> original_grid_;
+  const terrain::TaskSpec* original_grid_task_ = nullptr;
   NavigationState nav_;
   PerceptionModel perception_;
   terrain::GridMap semantics_scratch_;  // true semantics under a friction crop (perception)
