@@ -1,8 +1,9 @@
 // Where the vb tools find their shared files (vehicles, soils, perception presets, tasks, the
 // viewer's page): relative to the running executable, never through a path compiled in from the
 // source or build tree. An install puts the tools in <prefix>/bin and the files in
-// <prefix>/share/vb/{data,tasks,web}; the build tree mirrors that layout with relative
-// symlinks (build/share/vb/* -> ../../../data etc., cmake/vb_install.cmake), so built and installed tools look alike.
+// <prefix>/share/vb/{data,tasks,web}; the build tree mirrors that layout with relative symlinks
+// (build/share/vb/data -> ../../../data, ...: cmake/vb_install.cmake), so built and installed
+// tools look alike.
 // Environment overrides: VB_DATA_DIR (data), VB_WEB_DIR (the viewer's static files).
 #pragma once
 
