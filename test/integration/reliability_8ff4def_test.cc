@@ -12,7 +12,7 @@
 
 #include <gtest/gtest.h>
 
-#include "support/cli.h"
+#include "support/probe.h"
 
 namespace {
 
@@ -22,19 +22,11 @@ using Outcome = vb::testing::CommandOutcome;
 const std::string kBin = VB_BIN_DIR;
 const std::string kSource = VB_SOURCE_DIR;
 
-Outcome Sh(const std::string& command) { return vb::testing::RunCommand(command); }
-std::string ReadFile(const fs::path& p) { return vb::testing::ReadFileBytes(p); }
-void WriteFile(const fs::path& p, const std::string& text) {
-  std::ofstream(p, std::ios::binary | std::ios::trunc) << text;
-}
-bool Has(const Outcome& o, const std::string& s) { return o.output.find(s) != std::string::npos; }
-
-std::string Replace(std::string text, const std::string& from, const std::string& to) {
-  const size_t p = text.find(from);
-  EXPECT_NE(p, std::string::npos) << "no '" << from << "'";
-  if (p != std::string::npos) text.replace(p, from.size(), to);
-  return text;
-}
+using vb::testing::Has;
+using vb::testing::ReadFile;
+using vb::testing::Replace;
+using vb::testing::Sh;
+using vb::testing::WriteFile;
 
 // A vb_gym client: sends the JSON requests given as Python literals one per line of argv[1]'s
 // file, prints each reply header as one JSON line ("None" when the server has gone) and finally

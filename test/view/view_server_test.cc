@@ -387,15 +387,24 @@ TEST(ViewServerIdleTest, SilentClientIsDisconnectedAndOthersAreServed) {
   thread.join();
 }
 
-TEST(ViewServerHostTest, ForeignHostsAndOriginsAre403OnEveryRequestAndUpgrade) {
-  const terrain::TaskSpec task = test::PlaneTask();
+// A teleoperation session of the HMMWV on `task`, and a server configuration driving it.
+TeleopSession HmmwvSession(const terrain::TaskSpec& task) {
   TeleopOptions options;
   options.vehicle = "hmmwv";
-  TeleopSession session(task, test::Hmmwv(), nullptr, options);
+  return TeleopSession(task, test::Hmmwv(), nullptr, options);
+}
+ServerConfig TeleopConfig(TeleopSession* session) {
   ServerConfig config;
   config.port = 0;
-  config.teleop = &session;
+  config.teleop = session;
   config.teleop_scene_json = "{\"scene\": true}";
+  return config;
+}
+
+TEST(ViewServerHostTest, ForeignHostsAndOriginsAre403OnEveryRequestAndUpgrade) {
+  const terrain::TaskSpec task = test::PlaneTask();
+  TeleopSession session = HmmwvSession(task);
+  ServerConfig config = TeleopConfig(&session);
   ViewServer server(config);
   std::thread thread([&] { server.Run(); });
   const std::string upgrade = "Upgrade: websocket\r\nConnection: Upgrade\r\n"
@@ -423,13 +432,8 @@ TEST(ViewServerHostTest, ForeignHostsAndOriginsAre403OnEveryRequestAndUpgrade) {
 
 TEST(ViewServerTeleopTest, DriveOverAWebSocketIsRecorded) {
   const terrain::TaskSpec task = test::PlaneTask();
-  TeleopOptions options;
-  options.vehicle = "hmmwv";
-  TeleopSession session(task, test::Hmmwv(), nullptr, options);
-  ServerConfig config;
-  config.port = 0;
-  config.teleop = &session;
-  config.teleop_scene_json = "{\"scene\": true}";
+  TeleopSession session = HmmwvSession(task);
+  ServerConfig config = TeleopConfig(&session);
   config.exit_after_drives = 1;
   runner::TrialResult recorded;
   config.record_drive = [&](runner::TrialResult&& r) {
