@@ -206,10 +206,13 @@ void ViewServer::Impl::HandleHttp(Connection& c) {
     c.in.clear();
     return;
   }
-  c.in.clear();   // one request per connection: what follows it is never read
+  // What follows the head: WebSocket frames after an upgrade, else never read (one request per
+  // connection).
+  c.in.erase(0, c.in.find("\r\n\r\n") + 4);
   // Every request and every WebSocket upgrade: only this server's own pages (NEW-10).
   const std::string foreign = HostOriginProblem(request, port);
   if (!foreign.empty()) {
+    c.in.clear();
     c.out += HttpJsonError(403, foreign);
     return;
   }
@@ -233,6 +236,7 @@ void ViewServer::Impl::HandleHttp(Connection& c) {
     driver_fd = c.fd;
     return;
   }
+  c.in.clear();
   try {
     c.out += Route(config, request);
   } catch (const std::exception& e) {
