@@ -6,9 +6,11 @@
 // the fixes and the servers' limits.
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -110,7 +112,10 @@ class Reliability8ff4defTest : public ::testing::Test {
     WriteFile(dir_ / "ws_drive.py", kWsDrive);
     WriteFile(dir_ / "http_get.py", kHttpGet);
   }
-  void TearDown() override { fs::remove_all(dir_); }
+  void TearDown() override {
+    while (!views_.empty()) StopView(views_.back());   // also after a failed assertion
+    fs::remove_all(dir_);
+  }
 
   std::string Out(const std::string& name) const { return (dir_ / name).string(); }
   // A data directory with a variant of the HMMWV as vehicles/<name>.yaml.
@@ -139,6 +144,7 @@ class Reliability8ff4defTest : public ::testing::Test {
     const Outcome o = Sh("(" + prefix + "exec " + kBin + "/vb_view " + args + " --port " +
                          std::to_string(port) + ") > " + Out("view.log") + " 2>&1 & echo $!");
     const std::string pid = o.output.substr(0, o.output.find('\n'));
+    views_.push_back(pid);
     for (int i = 0; i < 200 && !Has(Sh("cat " + Out("view.log")), "serving"); ++i) ::usleep(50000);
     return pid;
   }
@@ -146,6 +152,7 @@ class Reliability8ff4defTest : public ::testing::Test {
     Sh("kill " + pid);
     for (int i = 0; i < 100 && Sh("kill -0 " + pid).exit_code == 0; ++i) ::usleep(100000);
     Sh("kill -9 " + pid);
+    views_.erase(std::remove(views_.begin(), views_.end(), pid), views_.end());
   }
   Outcome Get(int port, const std::string& target, const std::string& headers) {
     return Sh("timeout 30 python3 " + Out("http_get.py") + " " + std::to_string(port) + " '" +
@@ -154,6 +161,7 @@ class Reliability8ff4defTest : public ::testing::Test {
 
   fs::path dir_;
   std::string base_;
+  std::vector<std::string> views_;   // vb_view processes started, stopped in TearDown
 };
 
 // A port for this test's vb_view: distinct per test and process, above the usual ranges.
