@@ -4,6 +4,7 @@
 #include <sys/mman.h>
 #include <unistd.h>
 
+#include <cstdlib>
 #include <exception>
 #include <fstream>
 #include <new>
@@ -214,14 +215,22 @@ std::string HttpRequestBytes(const std::string& bytes) {
 // an OBJ's material library and a glTF's buffers would be (cube.mtl, buf.bin), and a file
 // outside the mesh's directory (NEW-12). The first byte picks the extension. A hang is a finding
 // (libFuzzer's -timeout), so is any escape but InputError.
+std::filesystem::path MeshDirRoot() {
+  return std::filesystem::temp_directory_path() / ("vb_fuzz_mesh_" + std::to_string(::getpid()));
+}
+void RemoveMeshDir() {
+  std::error_code ec;
+  std::filesystem::remove_all(MeshDirRoot(), ec);
+}
+
 std::string MeshFile(const std::string& bytes) {
   namespace fs = std::filesystem;
   static const fs::path dir = [] {
-    const fs::path d = fs::temp_directory_path() /
-                       ("vb_fuzz_mesh_" + std::to_string(::getpid())) / "meshes";
+    const fs::path d = MeshDirRoot() / "meshes";
     fs::create_directories(d);
     for (const char* fifo : {"cube.mtl", "buf.bin", "a.png"}) ::mkfifo((d / fifo).c_str(), 0600);
     std::ofstream(d.parent_path() / "outside.bin") << std::string(48, '\0');
+    std::atexit(RemoveMeshDir);
     return d;
   }();
   static const char* const kExtensions[] = {".obj", ".gltf", ".stl", ".ply", ".glb", ".off"};
