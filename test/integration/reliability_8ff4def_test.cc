@@ -231,6 +231,13 @@ TEST_F(Reliability8ff4defTest, New04TinyWheelIsBadInputNamingTheRadius) {
   EXPECT_EQ(o.exit_code, 2) << o.output;
   EXPECT_TRUE(Has(o, "tiny.yaml:129: key 'wheel.radius_m': the chassis envelope piece")) << o.output;
   EXPECT_TRUE(Has(o, "more than the limit of 262144")) << o.output;
+  // B64: a 1000 m wide wheel on soil ran out of memory while stepping (a sim_error after 13 s).
+  const std::string wide = DataWith("wide", "\n  width_m: 0.254", "\n  width_m: 1000.0");
+  const Outcome w = Sh("VB_DATA_DIR=" + wide + " timeout 60 " + kBin + "/vb_run " + kSource +
+                       "/tasks/env061.yaml --vehicle wide --pair 0 --time-limit 10 --out " +
+                       Out("o"));
+  EXPECT_EQ(w.exit_code, 2) << w.output;
+  EXPECT_TRUE(Has(w, "wide.yaml:130: key 'wheel.width_m': must be at most 10.0 m")) << w.output;
 }
 
 TEST_F(Reliability8ff4defTest, New05HardPointsAreCheckedOverTheWholeTravel) {

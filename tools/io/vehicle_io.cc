@@ -334,6 +334,8 @@ vehicles::SuspensionParams ReadSuspension(const StrictNode& node, bool steered) 
   return p;
 }
 
+constexpr double kMaxWheelSize_m = 10.0;   // radius and widths of a wheel
+
 vehicles::WheelParams ReadWheel(const StrictNode& node) {
   const StrictMap m =
       node.AsMap({"radius_m", "width_m", "mass_kg", "inertia_kgm2", "soil_footprint_width_m"});
@@ -346,6 +348,15 @@ vehicles::WheelParams ReadWheel(const StrictNode& node) {
   p.soil_footprint_width_m = m.Has("soil_footprint_width_m")
                                  ? m.Required("soil_footprint_width_m").AsPositive()
                                  : p.width_m;
+  // The soil grid under a wheel and its contact samples are sized by these lengths: a 1000 m
+  // wide wheel asked for gigabytes while stepping (B64 of the probe at 8ff4def). 10 m is five
+  // times the largest tyre made.
+  for (const char* key : {"radius_m", "width_m", "soil_footprint_width_m"}) {
+    if (m.Has(key) && m.Required(key).AsDouble() > kMaxWheelSize_m) {
+      m.Required(key).Fail("must be at most " + FormatDouble(kMaxWheelSize_m) + " m, got " +
+                           FormatDouble(m.Required(key).AsDouble()));
+    }
+  }
   return p;
 }
 
