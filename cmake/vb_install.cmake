@@ -9,8 +9,10 @@
 #   share/vb/web/viewer/  the 3-D viewer's static files (vb_view)
 #   share/doc/vb/         README.md and docs/*.md with their pictures
 #
-# The build tree mirrors the layout: build/share/vb/{data,tasks,web} are symlinks to the source
-# tree, so build/tools/vb_* find their files exactly as installed ones do.
+# The build tree mirrors the layout: build/share/vb/{data,tasks,web} are RELATIVE symlinks to the
+# source tree (e.g. ../../../data for build/ inside the checkout), so build/tools/vb_* find their
+# files exactly as installed ones do, and a checkout copied or moved with its build tree reads its
+# own data, never the original's (BuildTreeLayoutTest checks both).
 set(VB_TOOLS vb_run vb_batch vb_gen vb_import vb_report vb_view vb_gym vb_collect)
 install(TARGETS ${VB_TOOLS} RUNTIME DESTINATION bin)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/data/ DESTINATION share/vb/data)
@@ -23,6 +25,8 @@ install(FILES ${VB_USER_DOCS} DESTINATION share/doc/vb/docs)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/docs/img/ DESTINATION share/doc/vb/docs/img)
 
 file(MAKE_DIRECTORY ${PROJECT_BINARY_DIR}/share/vb)
-foreach(_d data tasks web)   # (re)made at every configure: follows a moved source tree
-  file(CREATE_LINK ${PROJECT_SOURCE_DIR}/${_d} ${PROJECT_BINARY_DIR}/share/vb/${_d} SYMBOLIC)
+foreach(_d data tasks web)   # (re)made at every configure
+  file(RELATIVE_PATH _target ${PROJECT_BINARY_DIR}/share/vb ${PROJECT_SOURCE_DIR}/${_d})
+  file(REMOVE ${PROJECT_BINARY_DIR}/share/vb/${_d})
+  file(CREATE_LINK ${_target} ${PROJECT_BINARY_DIR}/share/vb/${_d} SYMBOLIC)
 endforeach()

@@ -16,7 +16,7 @@ seconds="${1:-600}"
 shift || true
 build="$here/build-fuzz"
 all=(task_yaml vehicle_yaml soil_yaml original_config labels_npy trial_json batch_json index_csv
-     gym_frame)
+     gym_frame gym_request http_request mesh_file)
 targets=("$@")
 [ ${#targets[@]} -eq 0 ] && targets=("${all[@]}")
 

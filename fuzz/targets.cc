@@ -4,18 +4,30 @@
 #include <sys/mman.h>
 #include <unistd.h>
 
+#include <cstdlib>
 #include <exception>
+#include <fstream>
 #include <new>
 #include <string>
 
+#include <sys/stat.h>
+
+#include <filesystem>
+
+#include <nlohmann/json.hpp>
+
 #include "frame.h"
 #include "io/batch_io.h"
+#include "io/mesh_loader.h"
 #include "io/original_io.h"
 #include "io/soil_io.h"
 #include "io/task_io.h"
 #include "io/vehicle_io.h"
 #include "vb/batch/index.h"
+#include "server.h"
 #include "vb/engine/error.h"
+#include "view/http.h"
+#include "view/websocket.h"
 
 namespace vb::fuzz {
 namespace {
@@ -129,6 +141,108 @@ std::string GymFrames(const std::string& bytes) {
   });
 }
 
+// The vb_gym server on a stream of frames: every request frame gets one reply, and every reply is
+// a JSON object of strict UTF-8 (nlohmann's parser refuses anything else) with a "type": deep
+// nesting, bytes that are not UTF-8 and absurd values included (NEW-1, NEW-2). A fresh,
+// unconfigured server per input; requests that would write files (write_result, write_index)
+// are skipped, so the fuzzer never writes where a request points.
+std::string GymRequests(const std::string& bytes) {
+  const MemoryFile f(bytes);
+  std::string finding;
+  const std::string verdict = Check([&] {
+    const int fd = ::open(f.path().c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd < 0) return;
+    gym::Server server(VB_SOURCE_DIR "/data");
+    gym::Frame frame;
+    std::string error, reply;
+    std::vector<uint8_t> payload;
+    for (int k = 0; k < 16 && gym::ReadFrame(fd, &frame, &error) == gym::ReadStatus::kOk; ++k) {
+      if (frame.header.find("write_") != std::string::npos) continue;
+      bool keep_going = true;
+      try {
+        keep_going = server.Handle(frame, &reply, &payload);
+      } catch (const std::exception& e) {
+        finding = std::string("Handle threw: ") + e.what();
+        break;
+      }
+      try {
+        const nlohmann::json j = nlohmann::json::parse(reply);
+        if (!j.is_object() || !j.contains("type")) finding = "a reply without a type: " + reply;
+      } catch (const nlohmann::json::exception& e) {
+        finding = std::string("a reply that is not strict JSON (") + e.what() + ")";
+      }
+      if (!finding.empty() || !keep_going) break;
+    }
+    ::close(fd);
+  });
+  return finding.empty() ? verdict : finding;
+}
+
+// vb_view's request handling without sockets: the HTTP head parser, the Host/Origin check, the
+// path mapping, and the WebSocket frame decoder on whatever follows the head. No exception may
+// escape, and a mapped path never holds a ".." segment (NEW-10's surfaces).
+std::string HttpRequestBytes(const std::string& bytes) {
+  std::string finding;
+  const std::string verdict = Check([&] {
+    view::HttpRequest request;
+    std::string error;
+    if (view::ParseHttpRequest(bytes, &request, &error) == view::HttpParse::kRequest) {
+      view::HostOriginProblem(request, 8765);
+      for (const char* prefix : {"/files/", "/viewer/", "/"}) {
+        const std::string rel = view::SafeRelativePath(request.path, prefix);
+        if (("/" + rel + "/").find("/../") != std::string::npos) {
+          finding = "SafeRelativePath let '..' through: " + rel;
+        }
+      }
+      std::string rest = bytes.substr(bytes.find("\r\n\r\n") + 4);
+      for (int k = 0; k < 64 && !rest.empty(); ++k) {
+        view::WsFrame frame;
+        size_t used = 0;
+        if (view::DecodeClientFrame(rest, &frame, &used, &error) != view::WsDecode::kFrame) break;
+        if (used == 0 || used > rest.size()) {
+          finding = "DecodeClientFrame consumed " + std::to_string(used) + " of " +
+                    std::to_string(rest.size()) + " bytes";
+          break;
+        }
+        rest.erase(0, used);
+      }
+    }
+  });
+  return finding.empty() ? verdict : finding;
+}
+
+// The mesh loader on a file of any format assimp knows, with hostile neighbours: FIFOs named as
+// an OBJ's material library and a glTF's buffers would be (cube.mtl, buf.bin), and a file
+// outside the mesh's directory (NEW-12). The first byte picks the extension. A hang is a finding
+// (libFuzzer's -timeout), so is any escape but InputError.
+std::filesystem::path MeshDirRoot() {
+  return std::filesystem::temp_directory_path() / ("vb_fuzz_mesh_" + std::to_string(::getpid()));
+}
+void RemoveMeshDir() {
+  std::error_code ec;
+  std::filesystem::remove_all(MeshDirRoot(), ec);
+}
+
+std::string MeshFile(const std::string& bytes) {
+  namespace fs = std::filesystem;
+  static const fs::path dir = [] {
+    const fs::path d = MeshDirRoot() / "meshes";
+    fs::create_directories(d);
+    for (const char* fifo : {"cube.mtl", "buf.bin", "a.png"}) ::mkfifo((d / fifo).c_str(), 0600);
+    std::ofstream(d.parent_path() / "outside.bin") << std::string(48, '\0');
+    std::atexit(RemoveMeshDir);
+    return d;
+  }();
+  static const char* const kExtensions[] = {".obj", ".gltf", ".stl", ".ply", ".glb", ".off"};
+  const std::string ext = bytes.empty() ? ".obj" : kExtensions[static_cast<uint8_t>(bytes[0]) % 6];
+  const std::string path = (dir / ("mesh" + ext)).string();
+  {
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    if (!bytes.empty()) out.write(bytes.data() + 1, static_cast<std::streamsize>(bytes.size() - 1));
+  }
+  return Check([&] { io::LoadMeshVertices(path, "fuzz_task.yaml", 1, "obstacles.shapes.rock.mesh"); });
+}
+
 }  // namespace
 
 const std::vector<Target>& Targets() {
@@ -143,6 +257,9 @@ const std::vector<Target>& Targets() {
       {"batch_json", &BatchJson, {}},
       {"index_csv", &IndexCsv, {}},
       {"gym_frame", &GymFrames, {}},
+      {"gym_request", &GymRequests, {}},
+      {"http_request", &HttpRequestBytes, {}},
+      {"mesh_file", &MeshFile, {}},
   };
   return kTargets;
 }

@@ -7,11 +7,14 @@ value (``ConfigError``, a ``ValueError``). The server checks again (and names ta
 from __future__ import annotations
 
 import dataclasses
+import math
 import os
 import re
 import subprocess
 from pathlib import Path
 from typing import Any, Sequence
+
+import numpy as np
 
 from .protocol import find_server_binary
 from .reward import RewardWeights
@@ -23,8 +26,36 @@ RULE_SETS = ("vb", "verti_bench")   # runner::RuleSet (include/vb/engine/runner/
 PHYSICS_STEP_S = 0.005
 
 
+# vb_gym's limit on an observation's crops: the protocol's 256 MiB payload less 1 MiB for the
+# state arrays (tools/vb_gym/server.cc, kMaxCropPayloadBytes).
+MAX_CROP_PAYLOAD_BYTES = (256 << 20) - (1 << 20)
+
+
 class ConfigError(ValueError):
     """A bad configuration value; the message names the key."""
+
+
+def _is_int(v: Any) -> bool:
+    return isinstance(v, (int, np.integer)) and not isinstance(v, bool)
+
+
+def _number(key: str, value: Any, lo: float, hi: float, open_low: bool = False) -> float:
+    """value as a float in [lo, hi] ((lo, hi] with open_low); ConfigError naming key otherwise.
+    NaN and the infinities fail every comparison, so they are refused too."""
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
+        raise ConfigError(f"{key}: expected a number, got {value!r}")
+    x = float(value)
+    ok = math.isfinite(x) and (lo < x if open_low else lo <= x) and x <= hi
+    if not ok:
+        low = "(" if open_low else "["
+        raise ConfigError(f"{key}: {value!r} not in {low}{lo:g}, {hi:g}]")
+    return x
+
+
+def _integer(key: str, value: Any, lo: int, hi: int) -> int:
+    if not _is_int(value) or not lo <= value <= hi:
+        raise ConfigError(f"{key}: {value!r} not an integer in [{lo}, {hi}]")
+    return int(value)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -100,49 +131,72 @@ class EnvConfig:
         return config
 
     def validate(self) -> None:
+        """Checks every option; ConfigError (a ValueError) naming the key for any bad value or
+        type, including NaN, infinities and numbers too large to use (1e308 s is no period)."""
         if self.action not in ACTIONS:
             raise ConfigError(f"action: {self.action!r} unknown; valid: {', '.join(ACTIONS)}")
-        ratio = self.control_period_s / PHYSICS_STEP_S if self.control_period_s > 0 else 0.0
-        if not (self.control_period_s > 0) or abs(ratio - round(ratio)) > 1e-9 * ratio:
+        for key in ("vehicle", "soil", "perception", "system"):
+            if not isinstance(getattr(self, key), (str, os.PathLike)):
+                raise ConfigError(f"{key}: expected a name, got {getattr(self, key)!r}")
+        # The server's ranges (tools/vb_gym/server.cc, Configure), checked here first.
+        period = _number("control_period_s", self.control_period_s, 0.0, 60.0, open_low=True)
+        ratio = period / PHYSICS_STEP_S
+        if abs(ratio - round(ratio)) > 1e-9 * ratio:
             raise ConfigError(
                 f"control_period_s: {self.control_period_s!r} is not a positive whole number of "
                 f"physics steps of {PHYSICS_STEP_S} s"
             )
-        if not (0 < self.time_limit_s <= 3600):  # runner::kMaxTimeLimit_s
-            raise ConfigError(f"time_limit_s: {self.time_limit_s!r} not in (0, 3600]")
+        _number("time_limit_s", self.time_limit_s, 0.0, 3600.0, open_low=True)  # kMaxTimeLimit_s
         if self.rules not in RULE_SETS:
             raise ConfigError(f"rules: {self.rules!r} unknown; valid: {', '.join(RULE_SETS)}")
-        if not (self.max_speed_mps > 0):
-            raise ConfigError(f"max_speed_mps: {self.max_speed_mps!r} must be > 0")
-        if isinstance(self.crops, Crop):
-            raise ConfigError("crops: expected a list of Crop, got a single Crop")
+        _number("max_speed_mps", self.max_speed_mps, 0.0, 1e3, open_low=True)
+        _number("speed_kp", self.speed_kp, 0.0, 1e3)
+        _number("unknown_elevation_m", self.unknown_elevation_m, -1e9, 1e9)
+        _number("lookahead_m", self.lookahead_m, 0.0, 1e4)
+        _number("replan_period_s", self.replan_period_s, 0.0, 1e4)
+        _number("timeout_s", self.timeout_s, 0.0, 1e9, open_low=True)
+        _integer("episode_cache", self.episode_cache, 1, 1000)
+        for key in ("include_wheels", "relative_elevation", "flatten", "keep_trajectory"):
+            if not isinstance(getattr(self, key), bool):
+                raise ConfigError(f"{key}: expected True or False, got {getattr(self, key)!r}")
+        if isinstance(self.crops, (Crop, dict, str)) or not isinstance(self.crops, Sequence):
+            raise ConfigError(f"crops: expected a list of Crop, got {self.crops!r}")
         crops = []
         for c in self.crops:
             if isinstance(c, dict):
-                c = Crop(**c)
+                try:
+                    c = Crop(**c)
+                except TypeError as e:
+                    raise ConfigError(f"crops: {e}") from None
             if not isinstance(c, Crop):
                 raise ConfigError(f"crops: expected Crop or dict entries, got {c!r}")
             if c.layer not in LAYERS:
                 raise ConfigError(f"crops: layer {c.layer!r} unknown; valid: {', '.join(LAYERS)}")
-            if not (isinstance(c.size_cells, int) and 1 <= c.size_cells <= 1024):
-                raise ConfigError(f"crops: size_cells {c.size_cells!r} not an integer in [1, 1024]")
-            if not (c.resolution_m > 0):
-                raise ConfigError(f"crops: resolution_m {c.resolution_m!r} must be > 0")
+            _integer("crops: size_cells", c.size_cells, 1, 1024)
+            _number("crops: resolution_m", c.resolution_m, 1e-3, 100.0)
             crops.append(c)
         keys = [c.key for c in crops]
         if len(set(keys)) != len(keys) or {"state", "wheels"} & set(keys):
             raise ConfigError(f"crops: names must be unique and not state/wheels, got {keys}")
+        crop_bytes = sum(4 * c.size_cells**2 for c in crops)
+        if crop_bytes > MAX_CROP_PAYLOAD_BYTES:
+            raise ConfigError(f"crops: {crop_bytes} bytes per observation, above the protocol's "
+                              f"limit of {MAX_CROP_PAYLOAD_BYTES}")
         self.crops = tuple(crops)
         if self.pairs is not None:
-            if not all(isinstance(p, int) and p >= 0 for p in self.pairs) or not self.pairs:
+            if isinstance(self.pairs, (str, bytes)) or not isinstance(self.pairs, Sequence) or \
+                    not self.pairs or not all(_is_int(p) and p >= 0 for p in self.pairs):
                 raise ConfigError(f"pairs: expected a non-empty list of indices >= 0, got "
                                   f"{self.pairs!r}")
-        if not re.fullmatch(r"[A-Za-z0-9_-][A-Za-z0-9_.-]{0,63}", str(self.system)):
+        if not re.fullmatch(r"[A-Za-z0-9_][A-Za-z0-9_.-]{0,63}", str(self.system)):
             raise ConfigError(f"system: {self.system!r} is not a name of 1-64 letters, digits, "
-                              "'_', '-', '.'")
+                              "'_', '-', '.' (not starting with '.' or '-')")
         if not isinstance(self.reward, RewardWeights):
             raise ConfigError("reward: expected a vb_gym.RewardWeights")
-        self.reward.validate()
+        try:
+            self.reward.validate()
+        except ValueError as e:
+            raise ConfigError(str(e)) from None
 
     def task_files(self) -> list[str]:
         """The task files, resolved (relative paths against the cwd, then the repository)."""

@@ -61,9 +61,15 @@ class VbEnv(gym.Env):
         self.action_space = self._core.action_space
         self.render_mode = None
 
+    def _open_core(self) -> EnvCore:
+        """The running environment; after close() a clear RuntimeError, not an AttributeError."""
+        if self._core is None:
+            raise RuntimeError("VbEnv is closed: make a new environment")
+        return self._core
+
     @property
     def tasks(self) -> list[dict[str, Any]]:
-        return self._core.tasks
+        return self._open_core().tasks
 
     @property
     def server_pid(self) -> int | None:
@@ -71,19 +77,21 @@ class VbEnv(gym.Env):
 
     def reset(self, *, seed: int | None = None,
               options: dict[str, Any] | None = None) -> tuple[Any, dict[str, Any]]:
+        core = self._open_core()
         super().reset(seed=seed)
-        task, pair, trial_seed = draw_episode(self._core, self.np_random, options)
-        self._core.send_reset(task, pair, trial_seed)
-        return self._core.receive_reset()
+        task, pair, trial_seed = draw_episode(core, self.np_random, options)
+        core.send_reset(task, pair, trial_seed)
+        return core.receive_reset()
 
     def step(self, action: Any) -> tuple[Any, float, bool, bool, dict[str, Any]]:
-        self._core.send_step(action)
-        return self._core.receive_step()
+        core = self._open_core()
+        core.send_step(action)
+        return core.receive_step()
 
     def write_result(self, directory: str) -> dict[str, Any]:
         """Writes the ended trial's JSON and trajectory CSV (vb_run's format) into directory;
         needs keep_trajectory=True."""
-        return self._core.request({"op": "write_result", "dir": str(directory)})
+        return self._open_core().request({"op": "write_result", "dir": str(directory)})
 
     def close(self) -> None:
         if self._core is not None:

@@ -11,7 +11,9 @@
 Trials (task x pair x seed) are run in WORKERS processes (one vb_gym each); each ended trial is
 written to DIR/trials/<task>_p<K>_s<seed>_<vehicle>_<system>.json and _traj.csv exactly as vb_run
 and vb_batch write them, atomically. A run that is killed resumes: trials with a record are
-skipped. At the end DIR/index.csv is rebuilt from every record in DIR/trials, so a directory that
+skipped. Workers die with the evaluation: each asks the kernel for SIGKILL when its parent
+dies (Linux PR_SET_PDEATHSIG), and SIGTERM or Ctrl-C end the evaluation at once (exit 128 +
+signal), so no worker and no vb_gym outlives a killed run. At the end DIR/index.csv is rebuilt from every record in DIR/trials, so a directory that
 also holds vb_batch's baselines shows them side by side in ``vb_report DIR`` (Table I, Fig. 6).
 docs/gym.md "Submitting a system".
 """
@@ -20,9 +22,12 @@ from __future__ import annotations
 
 import argparse
 import concurrent.futures
+import ctypes
 import importlib
 import json
 import multiprocessing
+import os
+import signal
 import sys
 import time
 from pathlib import Path
@@ -89,6 +94,28 @@ def recorded(path: Path) -> bool:
         return json.loads(path.read_text()).get("status") not in (None, "crashed")
     except (OSError, ValueError):
         return False
+
+
+_PR_SET_PDEATHSIG = 1   # <linux/prctl.h>
+
+
+def die_with_parent(parent_pid: int) -> None:
+    """Worker initializer: SIGKILL when the evaluation's process dies (even by SIGKILL, which no
+    handler sees), and exit at once if it is already gone. The worker's vb_gym then sees its
+    stdin close and exits too."""
+    if sys.platform.startswith("linux"):
+        libc = ctypes.CDLL(None, use_errno=True)
+        libc.prctl(_PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
+    if os.getppid() != parent_pid:
+        os._exit(1)
+
+
+def _exit_on_signal(signum: int, _frame: Any) -> None:
+    # Not SystemExit: the pool's shutdown would wait for every worker's remaining trials. The
+    # workers follow by their parent-death signal; finished trials are on disk (resume).
+    print(f"vb_gym.evaluate: interrupted by signal {signum}; run the same command again to "
+          "resume", file=sys.stderr, flush=True)
+    os._exit(128 + signum)
 
 
 def run_trials(config: EnvConfig, policy_spec: str, trials: list[tuple[int, int, int]],
@@ -214,7 +241,11 @@ def main(argv: list[str] | None = None) -> int:
     counts: dict[str, int] = {}
     if chunks:
         ctx = multiprocessing.get_context("spawn")
-        with concurrent.futures.ProcessPoolExecutor(len(chunks), mp_context=ctx) as pool:
+        for sig in (signal.SIGTERM, signal.SIGINT):
+            signal.signal(sig, _exit_on_signal)
+        with concurrent.futures.ProcessPoolExecutor(len(chunks), mp_context=ctx,
+                                                    initializer=die_with_parent,
+                                                    initargs=(os.getpid(),)) as pool:
             futures = [pool.submit(run_trials, config, args.policy, c, str(trial_dir))
                        for c in chunks]
             for f in concurrent.futures.as_completed(futures):

@@ -154,6 +154,29 @@ VehicleSnapshot& VehicleSnapshot::operator=(const VehicleSnapshot& other) {
   return *this;
 }
 
+double EnvelopeObstacleSpacing_m(const VehicleParams& params) {
+  return 0.1 * params.wheel.radius_m;
+}
+
+TravelRange CarrierTravel(const SuspensionParams& su) {
+  TravelRange r;
+  if (su.model == SuspensionModel::kRigid) {
+    r.lower_m = -kHardLimitBeyondStops_m;
+    r.upper_m = kHardLimitBeyondStops_m;
+  } else {
+    r.lower_m = -su.rebound_travel_m - su.stop_deflection_m.back() - kHardLimitBeyondStops_m;
+    r.upper_m = su.bump_travel_m + su.stop_deflection_m.back() + kHardLimitBeyondStops_m;
+  }
+  return r;
+}
+
+Table1D CornerShockLengthTable(const SuspensionParams& su) {
+  const TravelRange travel = CarrierTravel(su);
+  // sampled every ~5 mm over the whole possible travel
+  const int samples = 2 + static_cast<int>((travel.upper_m - travel.lower_m) / 0.005);
+  return ShockLengthTable(su.hardpoints, travel.lower_m, travel.upper_m, samples);
+}
+
 Vehicle::Vehicle(const VehicleParams& params, const terrain::Terrain& terrain, const Pose& pose_W,
                  engine::PhysicsWorld* world)
     : params_(params),
@@ -163,7 +186,7 @@ Vehicle::Vehicle(const VehicleParams& params, const terrain::Terrain& terrain, c
       body_contact_(std::make_unique<Body>()) {
   const double ground_spacing_m =
       0.25 * std::min(terrain.spacing_x_m(), terrain.spacing_y_m());
-  const double obstacle_spacing_m = 0.1 * params_.wheel.radius_m;
+  const double obstacle_spacing_m = EnvelopeObstacleSpacing_m(params_);
   for (const EnvelopePiece& piece : params_.chassis.envelope) {
     body_contact_->for_ground_B.push_back(
         engine::MakeConvexHull(piece.points_B, ground_spacing_m, "chassis.envelope." + piece.name));
@@ -279,21 +302,11 @@ Vehicle::Vehicle(const VehicleParams& params, const terrain::Terrain& terrain, c
       carrier.parent_com_to_joint_P = center_B - ch.com_B;
       carrier.mass_kg = axle.steered ? su.carrier_mass_kg / 2.0 : su.carrier_mass_kg;
       carrier.inertia_kgm2 = su.carrier_inertia_kgm2;
-      if (su.model == SuspensionModel::kRigid) {
-        carrier.limit_lower = -kHardLimitBeyondStops_m;
-        carrier.limit_upper = kHardLimitBeyondStops_m;
-      } else {
-        carrier.limit_lower = -su.rebound_travel_m - su.stop_deflection_m.back() -
-                              kHardLimitBeyondStops_m;
-        carrier.limit_upper = su.bump_travel_m + su.stop_deflection_m.back() +
-                              kHardLimitBeyondStops_m;
-      }
+      const TravelRange travel = CarrierTravel(su);
+      carrier.limit_lower = travel.lower_m;
+      carrier.limit_upper = travel.upper_m;
       if (su.model == SuspensionModel::kDoubleWishbone) {
-        // sampled every ~5 mm over the whole possible travel
-        const int samples =
-            2 + static_cast<int>((carrier.limit_upper - carrier.limit_lower) / 0.005);
-        corner.shock_length =
-            ShockLengthTable(su.hardpoints, carrier.limit_lower, carrier.limit_upper, samples);
+        corner.shock_length = CornerShockLengthTable(su);
       }
       corner.carrier_link = static_cast<int>(links.size());
       links.push_back(carrier);

@@ -12,7 +12,7 @@
 
 #include <gtest/gtest.h>
 
-#include "support/cli.h"
+#include "support/probe.h"
 
 namespace {
 
@@ -26,20 +26,11 @@ const std::string kGen = VB_BIN_DIR "/vb_gen";
 const std::string kImport = VB_BIN_DIR "/vb_import";
 const std::string kSamples = VB_SHARED_DIR "/verti_bench_samples";
 
-Outcome Sh(const std::string& command) { return vb::testing::RunCommand(command); }
-std::string ReadFile(const fs::path& p) { return vb::testing::ReadFileBytes(p); }
-void WriteFile(const fs::path& p, const std::string& text) {
-  std::ofstream(p, std::ios::binary | std::ios::trunc) << text;
-}
-bool Has(const Outcome& o, const std::string& s) { return o.output.find(s) != std::string::npos; }
-
-// `text` with the first occurrence of `from` replaced by `to` (which must occur).
-std::string Replace(std::string text, const std::string& from, const std::string& to) {
-  const size_t p = text.find(from);
-  EXPECT_NE(p, std::string::npos) << "no '" << from << "'";
-  if (p != std::string::npos) text.replace(p, from.size(), to);
-  return text;
-}
+using vb::testing::Has;
+using vb::testing::ReadFile;
+using vb::testing::Replace;
+using vb::testing::Sh;
+using vb::testing::WriteFile;
 
 class ReliabilityTest : public ::testing::Test {
  protected:

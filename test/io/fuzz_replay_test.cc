@@ -57,6 +57,7 @@ TEST_P(FuzzReplayTest, SeedsAndTheirPrefixesAreAcceptedOrRefusedCleanly) {
 INSTANTIATE_TEST_SUITE_P(AllTargets, FuzzReplayTest,
                          ::testing::Values("task_yaml", "vehicle_yaml", "soil_yaml",
                                            "original_config", "labels_npy", "trial_json",
-                                           "batch_json", "index_csv", "gym_frame"));
+                                           "batch_json", "index_csv", "gym_frame", "gym_request",
+                                           "http_request", "mesh_file"));
 
 }  // namespace

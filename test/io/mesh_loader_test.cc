@@ -2,8 +2,10 @@
 // STL and glTF; bad meshes (missing, empty, non-manifold, huge, flat) are located errors.
 #include "io/mesh_loader.h"
 
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -128,8 +130,12 @@ TEST_F(MeshLoaderTest, EmptyAndHugeSayWhat) {
                 msg.find("cannot be read as a mesh") != std::string::npos)
         << msg;
   }
+  // 110 001 distinct vertices (the limit counts merged positions, NEW-13 below).
   std::string many;
-  for (int i = 0; i < 40000; ++i) many += "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\n";
+  for (int i = 0; i < 36667; ++i) {
+    const std::string x = std::to_string(i);
+    many += "v " + x + " 0 0\nv " + x + " 1 0\nv " + x + " 0 1\nf -3 -2 -1\n";
+  }
   try {
     LoadMeshVertices(Write("many.obj", many), "task.yaml", 3, "k");
     ADD_FAILURE() << "no error";
@@ -137,6 +143,68 @@ TEST_F(MeshLoaderTest, EmptyAndHugeSayWhat) {
     EXPECT_NE(std::string(e.what()).find("huge: more than 100000 vertices"), std::string::npos)
         << e.what();
   }
+}
+
+// A glTF tetrahedron whose one buffer is the file `uri` (36 bytes: 4 float3 positions, then 12
+// uint16 indices would follow in a real file; here the reference itself is what is tested).
+std::string GltfWithBuffer(const std::string& uri) {
+  return R"({"asset": {"version": "2.0"}, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+  "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+  "buffers": [{"uri": ")" + uri + R"(", "byteLength": 48}],
+  "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48}],
+  "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3",
+                 "min": [0, 0, 0], "max": [1, 1, 1]}]})";
+}
+
+TEST_F(MeshLoaderTest, ReferencedFilesAreCheckedLikeTheMeshItself) {
+  // NEW-12 of the probe at 8ff4def: an OBJ's mtllib or a glTF buffer that is a FIFO blocked the
+  // load forever (assimp opened it unchecked); a buffer outside the mesh's directory was read.
+  const std::string fifo = (fs::path(dir_) / "cube.mtl").string();
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const std::string obj = Write("fifo_mtl.obj", std::string("mtllib cube.mtl\n") + kTetraObj);
+  test::ExpectInputError([&] { LoadMeshVertices(obj, "task.yaml", 7, "k"); }, "task.yaml", 7,
+                         "k", "cube.mtl' is a FIFO, not a regular file");
+  ASSERT_EQ(::mkfifo((fs::path(dir_) / "buf.bin").c_str(), 0600), 0);
+  test::ExpectInputError(
+      [&] { LoadMeshVertices(Write("fifo.gltf", GltfWithBuffer("buf.bin")), "task.yaml", 7, "k"); },
+      "task.yaml", 7, "k", "buf.bin' is a FIFO, not a regular file");
+  test::ExpectInputError(
+      [&] {
+        LoadMeshVertices(Write("out.gltf", GltfWithBuffer("../../../../../../etc/passwd")),
+                         "task.yaml", 7, "k");
+      },
+      "task.yaml", 7, "k", "is outside the mesh file's directory");
+}
+
+TEST_F(MeshLoaderTest, TheVertexLimitCountsDistinctVertices) {
+  // NEW-13 of the probe at 8ff4def: a closed OBJ sphere of 25 442 vertices (4 face corners per
+  // quad) was refused as "more than 100000 vertices".
+  const int n = 160;
+  std::string text;
+  const double pi = 3.14159265358979323846;
+  text += "v 0 0 1\n";
+  for (int i = 1; i < n; ++i) {
+    for (int j = 0; j < n; ++j) {
+      const double t = pi * i / n, p = 2 * pi * j / n;
+      text += "v " + std::to_string(std::sin(t) * std::cos(p)) + " " +
+              std::to_string(std::sin(t) * std::sin(p)) + " " + std::to_string(std::cos(t)) + "\n";
+    }
+  }
+  text += "v 0 0 -1\n";
+  const int last = 2 + (n - 1) * n;
+  auto k = [&](int i, int j) { return 2 + (i - 1) * n + j % n; };
+  for (int j = 0; j < n; ++j) {
+    text += "f 1 " + std::to_string(k(1, j)) + " " + std::to_string(k(1, j + 1)) + "\n";
+    text += "f " + std::to_string(last) + " " + std::to_string(k(n - 1, j + 1)) + " " +
+            std::to_string(k(n - 1, j)) + "\n";
+  }
+  for (int i = 1; i < n - 1; ++i) {
+    for (int j = 0; j < n; ++j) {
+      text += "f " + std::to_string(k(i, j)) + " " + std::to_string(k(i + 1, j)) + " " +
+              std::to_string(k(i + 1, j + 1)) + " " + std::to_string(k(i, j + 1)) + "\n";
+    }
+  }
+  EXPECT_EQ(LoadMeshVertices(Write("sphere.obj", text), "t", 1, "k").size(), 25442u);
 }
 
 }  // namespace

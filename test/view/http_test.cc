@@ -77,5 +77,39 @@ TEST(HttpTest, ResponsesCarryLengthAndType) {
   EXPECT_NE(e.find("{\"error\": \"bad \\\"trial\\\"\"}"), std::string::npos);
 }
 
+HttpRequest WithHeaders(const std::string& headers) {
+  HttpRequest r;
+  std::string error;
+  EXPECT_EQ(ParseHttpRequest("GET / HTTP/1.1\r\n" + headers + "\r\n", &r, &error),
+            HttpParse::kRequest)
+      << error;
+  return r;
+}
+
+TEST(HttpTest, OnlyTheServersOwnHostAndOriginAreAnswered) {
+  for (const char* host : {"127.0.0.1:8765", "localhost:8765", "LOCALHOST:8765", "[::1]:8765"}) {
+    EXPECT_EQ(HostOriginProblem(WithHeaders(std::string("Host: ") + host + "\r\n"), 8765), "")
+        << host;
+  }
+  EXPECT_EQ(HostOriginProblem(WithHeaders("Host: 127.0.0.1:8765\r\nOrigin: http://localhost:8765\r\n"),
+                              8765),
+            "");
+  EXPECT_EQ(HostOriginProblem(WithHeaders("Host: localhost\r\n"), 80), "");
+  // NEW-10 of the probe at 8ff4def: any Host and any Origin were answered.
+  for (const char* host : {"attacker.example", "attacker.example:8765", "127.0.0.1:8766",
+                           "127.0.0.1", "127.0.0.2:8765", "localhost.attacker.example:8765",
+                           "[::1]", "127.0.0.1:8765:1"}) {
+    EXPECT_NE(HostOriginProblem(WithHeaders(std::string("Host: ") + host + "\r\n"), 8765), "")
+        << host;
+  }
+  EXPECT_NE(HostOriginProblem(WithHeaders(""), 8765).find("no Host header"), std::string::npos);
+  for (const char* origin : {"http://attacker.example", "http://127.0.0.1:9999", "null",
+                             "https://127.0.0.1:8765", "http://127.0.0.1:8765.attacker.example"}) {
+    const std::string problem = HostOriginProblem(
+        WithHeaders(std::string("Host: 127.0.0.1:8765\r\nOrigin: ") + origin + "\r\n"), 8765);
+    EXPECT_NE(problem.find("is not this server's page"), std::string::npos) << origin;
+  }
+}
+
 }  // namespace
 }  // namespace vb::view

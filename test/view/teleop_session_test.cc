@@ -139,6 +139,9 @@ TEST(TeleopSessionTest, BadMessagesAreRejectedAndChangeNothing) {
   EXPECT_NE(s.HandleMessage("command 0 0 nan", 0.0).find("braking 'nan' is not a number"),
             std::string::npos);
   EXPECT_NE(s.HandleMessage("command 1e x 0", 0.0).find("not a number"), std::string::npos);
+  // W10 of the probe at 8ff4def: strtod read "0x1" as 1.0; the protocol says plain decimal.
+  EXPECT_NE(s.HandleMessage("command 0x1 0 0", 0.0).find("throttle '0x1' is not a number"),
+            std::string::npos);
   EXPECT_NE(s.HandleMessage("command 1 0", 0.0).find("THROTTLE STEERING BRAKING"),
             std::string::npos);
   EXPECT_NE(s.HandleMessage("", 0.0).find("empty"), std::string::npos);

@@ -283,6 +283,31 @@ TEST_F(ViewServerTest, RecordedTaskSetPathIsFoundBesideTheResultsNotInTheCheckou
             std::string::npos);
 }
 
+TEST_F(ViewServerTest, NoSymbolicLinkLeadsOutOfTheServedDirectory) {
+  // W02 of the probe at 8ff4def: a link in the results directory served /etc/passwd.
+  fs::create_symlink("/etc/passwd", root_ / "results" / "passwd.txt");
+  fs::create_symlink(root_ / "web", root_ / "results" / "web_dir");
+  std::string r = Respond("/files/passwd.txt");
+  EXPECT_EQ(Status(r), 403) << r;
+  EXPECT_NE(Body(r).find("outside the served directory"), std::string::npos) << r;
+  EXPECT_EQ(Status(Respond("/files/web_dir/index.html")), 403);
+  EXPECT_EQ(Status(Respond("/api/trial?result=passwd.txt")), 403);
+  // A link that stays inside is served.
+  fs::create_symlink(root_ / "results" / (stem_ + "_traj.csv"), root_ / "results" / "same.csv");
+  EXPECT_EQ(Status(Respond("/files/same.csv")), 200);
+}
+
+TEST_F(ViewServerTest, HugeFilesAreRefusedNotReadWhole) {
+  // W06 of the probe at 8ff4def: a sparse 64 GiB trajectory ended the server with bad_alloc.
+  const fs::path traj = root_ / "results" / (stem_ + "_traj.csv");
+  fs::resize_file(traj, 64ull << 30);
+  const std::string r = Respond("/api/trial?result=" + stem_ + ".json");
+  EXPECT_EQ(Status(r), 200) << r.substr(0, 300);
+  EXPECT_NE(Body(r).find("\"trajectory_csv\": null"), std::string::npos);
+  EXPECT_NE(Body(r).find("bytes, more than the"), std::string::npos);
+  EXPECT_EQ(Status(Respond("/files/" + stem_ + "_traj.csv")), 413);
+}
+
 TEST_F(ViewServerTest, ListensOnLoopbackOnly) {
   ViewServer server(config_);
   ASSERT_GT(server.port(), 0);
@@ -300,6 +325,9 @@ TEST_F(ViewServerTest, ListensOnLoopbackOnly) {
   }
   EXPECT_TRUE(found) << "no listening socket on 127.0.0.1:" << server.port();
 }
+
+// The Host header a browser sends for the server's own page.
+std::string LocalHost(int port) { return "127.0.0.1:" + std::to_string(port); }
 
 // A minimal blocking client for the end-to-end test.
 class Client {
@@ -346,7 +374,7 @@ TEST(ViewServerIdleTest, SilentClientIsDisconnectedAndOthersAreServed) {
   partial.Send("GET /api/scene HTTP/1.1\r\n");   // never finished
   {
     Client other(server.port());   // served while the two hang around
-    other.Send("GET /nowhere HTTP/1.1\r\n\r\n");
+    other.Send("GET /nowhere HTTP/1.1\r\nHost: " + LocalHost(server.port()) + "\r\n\r\n");
     EXPECT_NE(other.ReadUntil("}").find("404 Not Found"), std::string::npos);
   }
   const auto t0 = std::chrono::steady_clock::now();
@@ -359,15 +387,53 @@ TEST(ViewServerIdleTest, SilentClientIsDisconnectedAndOthersAreServed) {
   thread.join();
 }
 
-TEST(ViewServerTeleopTest, DriveOverAWebSocketIsRecorded) {
-  const terrain::TaskSpec task = test::PlaneTask();
+// A teleoperation session of the HMMWV on `task`, and a server configuration driving it.
+TeleopSession HmmwvSession(const terrain::TaskSpec& task) {
   TeleopOptions options;
   options.vehicle = "hmmwv";
-  TeleopSession session(task, test::Hmmwv(), nullptr, options);
+  return TeleopSession(task, test::Hmmwv(), nullptr, options);
+}
+ServerConfig TeleopConfig(TeleopSession* session) {
   ServerConfig config;
   config.port = 0;
-  config.teleop = &session;
+  config.teleop = session;
   config.teleop_scene_json = "{\"scene\": true}";
+  return config;
+}
+
+TEST(ViewServerHostTest, ForeignHostsAndOriginsAre403OnEveryRequestAndUpgrade) {
+  const terrain::TaskSpec task = test::PlaneTask();
+  TeleopSession session = HmmwvSession(task);
+  ServerConfig config = TeleopConfig(&session);
+  ViewServer server(config);
+  std::thread thread([&] { server.Run(); });
+  const std::string upgrade = "Upgrade: websocket\r\nConnection: Upgrade\r\n"
+                              "Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\n";
+  for (const std::string& head :
+       {std::string("GET /api/scene HTTP/1.1\r\nHost: attacker.example\r\n\r\n"),
+        std::string("GET /api/scene HTTP/1.1\r\n\r\n"),
+        "GET /ws HTTP/1.1\r\nHost: " + LocalHost(server.port()) +
+            "\r\nOrigin: http://attacker.example\r\n" + upgrade + "\r\n",
+        "GET /ws HTTP/1.1\r\nHost: attacker.example:" + std::to_string(server.port()) + "\r\n" +
+            upgrade + "\r\n"}) {
+    Client c(server.port());
+    c.Send(head);
+    const std::string reply = c.ReadUntil("}");
+    EXPECT_NE(reply.find("403 Forbidden"), std::string::npos) << head << " -> " << reply;
+  }
+  // The page's own origin drives (the seat is free: the refused upgrades took nothing).
+  Client ws(server.port());
+  ws.Send("GET /ws HTTP/1.1\r\nHost: " + LocalHost(server.port()) + "\r\nOrigin: http://" +
+          LocalHost(server.port()) + "\r\n" + upgrade + "\r\n");
+  EXPECT_NE(ws.ReadUntil("\r\n\r\n").find("101 Switching Protocols"), std::string::npos);
+  server.Stop();
+  thread.join();
+}
+
+TEST(ViewServerTeleopTest, DriveOverAWebSocketIsRecorded) {
+  const terrain::TaskSpec task = test::PlaneTask();
+  TeleopSession session = HmmwvSession(task);
+  ServerConfig config = TeleopConfig(&session);
   config.exit_after_drives = 1;
   runner::TrialResult recorded;
   config.record_drive = [&](runner::TrialResult&& r) {
@@ -380,12 +446,12 @@ TEST(ViewServerTeleopTest, DriveOverAWebSocketIsRecorded) {
   {
     Client http(server.port());
     ASSERT_TRUE(http.connected());
-    http.Send("GET /api/scene HTTP/1.1\r\nHost: x\r\n\r\n");
+    http.Send("GET /api/scene HTTP/1.1\r\nHost: " + LocalHost(server.port()) + "\r\n\r\n");
     EXPECT_NE(http.ReadUntil("{\"scene\": true}").find("{\"scene\": true}"), std::string::npos);
   }
   Client ws(server.port());
   ASSERT_TRUE(ws.connected());
-  ws.Send("GET /ws HTTP/1.1\r\nHost: x\r\nUpgrade: websocket\r\nConnection: Upgrade\r\n"
+  ws.Send("GET /ws HTTP/1.1\r\nHost: " + LocalHost(server.port()) + "\r\nUpgrade: websocket\r\nConnection: Upgrade\r\n"
           "Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\nSec-WebSocket-Version: 13\r\n\r\n");
   const std::string hello = ws.ReadUntil("\r\n\r\n");
   ASSERT_NE(hello.find("101 Switching Protocols"), std::string::npos) << hello;
@@ -393,7 +459,7 @@ TEST(ViewServerTeleopTest, DriveOverAWebSocketIsRecorded) {
   {
     // A second page cannot take over the wheel.
     Client second(server.port());
-    second.Send("GET /ws HTTP/1.1\r\nHost: x\r\nUpgrade: websocket\r\nConnection: Upgrade\r\n"
+    second.Send("GET /ws HTTP/1.1\r\nHost: " + LocalHost(server.port()) + "\r\nUpgrade: websocket\r\nConnection: Upgrade\r\n"
                 "Sec-WebSocket-Key: AAAAAAAAAAAAAAAAAAAAAA==\r\n\r\n");
     EXPECT_NE(second.ReadUntil("\r\n\r\n").find("409 Conflict"), std::string::npos);
   }

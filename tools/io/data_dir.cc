@@ -7,7 +7,9 @@
 #include <filesystem>
 #include <system_error>
 
+#include "io/cli_args.h"
 #include "vb/engine/error.h"
+#include "vb/engine/file_name.h"
 
 namespace vb::io {
 namespace fs = std::filesystem;
@@ -45,6 +47,22 @@ std::vector<std::string> YamlNamesIn(const std::string& dir) {
   }
   std::sort(names.begin(), names.end());
   return names;
+}
+
+std::string ListedDataFile(const std::string& data_dir, const std::string& kind,
+                           const std::string& name, const std::string& key,
+                           const std::string& file) {
+  const std::vector<std::string> names = YamlNamesIn(data_dir + "/" + kind);
+  const std::string problem = FileNameComponentProblem(name, kMaxDataNameLength);
+  if (!problem.empty() || std::find(names.begin(), names.end(), name) == names.end()) {
+    std::string singular = kind;
+    if (!singular.empty() && singular.back() == 's') singular.pop_back();
+    throw InputError(file, 0, key,
+                     "unknown " + singular + " '" + name + "' in " + data_dir + "/" + kind +
+                         (problem.empty() ? "" : " (" + problem + ")") +
+                         "; valid: " + JoinNames(names));
+  }
+  return data_dir + "/" + kind + "/" + name + ".yaml";
 }
 
 std::string ExecutableDir() {

@@ -316,6 +316,12 @@ void WriteTrajectoryCsv(const runner::TrialResult& r, const std::string& path) {
   WriteAtomically(path, text);
 }
 
+void WriteTrialFiles(const runner::TrialResult& result, const std::string& stem_path,
+                     const Provenance& provenance) {
+  WriteTrajectoryCsv(result, stem_path + "_traj.csv");
+  WriteTrialJson(result, stem_path + ".json", provenance);
+}
+
 void WriteSummaryCsv(const std::vector<runner::TrialResult>& results, const std::string& path) {
   // A "rules" column only when a trial was decided by other rules than vb's, as in vb_batch's
   // index: default summaries keep their format, and another rule set's rows are never unnamed.

@@ -70,6 +70,11 @@ void WriteTrialJson(const runner::TrialResult& result, const std::string& path,
 // Columns: t_s, x_m, y_m, z_m, vx_mps, vy_mps, vz_mps, speed_mps, roll_deg, pitch_deg, yaw_deg,
 // throttle, steering, braking, gear, surface_w<i> (class id, -1 airborne), sinkage_w<i>_m.
 void WriteTrajectoryCsv(const runner::TrialResult& result, const std::string& path);
+// A trial's two files, STEM_traj.csv then STEM.json, each atomically: a record's presence
+// implies its complete trajectory (what resume and merge rely on, docs/reliability.md DEF-2).
+// Every tool that records a trial (vb_run, vb_gym, vb_view teleop) writes through this.
+void WriteTrialFiles(const runner::TrialResult& result, const std::string& stem_path,
+                     const Provenance& provenance);
 void WriteSummaryCsv(const std::vector<runner::TrialResult>& results, const std::string& path);
 
 // JSON string literal of `s` (quotes included), escaping per RFC 8259; bytes that are not

@@ -99,6 +99,11 @@ StrictNode ReadWorld(const StrictNode& node, TaskSpec& task) {
     range_node.Fail("the height span " + FormatDouble(range[0]) + " .. " +
                     FormatDouble(range[1]) + " is not a finite number");
   }
+  if (std::abs(range[0]) > Limits::kMaxAbsHeight_m || std::abs(range[1]) > Limits::kMaxAbsHeight_m) {
+    range_node.Fail("heights must lie within +-" + FormatDouble(Limits::kMaxAbsHeight_m) +
+                    " m (beyond, coordinates lose the precision contacts need), got " +
+                    FormatDouble(range[0]) + " .. " + FormatDouble(range[1]));
+  }
   task.min_height_m = range[0];
   task.max_height_m = range[1];
   const StrictNode image = world.Required("height_image");

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,7 @@
 #include "vb/vehicles/suspension_forces.h"
 #include "vb/vehicles/suspension_kinematics.h"
 #include "vb/vehicles/track_running_gear.h"
+#include "vb/vehicles/vehicle.h"
 
 namespace vb::io {
 namespace {
@@ -79,7 +81,9 @@ std::vector<vehicles::EnvelopePiece> ReadEnvelope(const StrictNode& node) {
     }
     engine::ConvexShape shape;
     std::string error;
-    if (!engine::TryMakeConvexHull(piece.points_B, 0.05, &shape, &error)) {
+    // Whether the points bound a convex body (the sample spacing here is only for this check;
+    // the vehicle's own spacings are checked in CheckEnvelopeSampling).
+    if (!engine::TryMakeConvexHull(piece.points_B, 1.0, &shape, &error)) {
       hull.Fail("no convex body: " + error);
     }
     pieces.push_back(piece);
@@ -311,18 +315,26 @@ vehicles::SuspensionParams ReadSuspension(const StrictNode& node, bool steered) 
   p.damping_nspm = m.Required("damping_nspm").AsNonNegative();
   ReadStopsAndCarrier(m, &p);
   if (!strut) {
-    // The linkage must assemble over the whole travel the stops allow (plus the stop stroke).
-    const double lo = -p.rebound_travel_m - p.stop_deflection_m.back();
-    const double hi = p.bump_travel_m + p.stop_deflection_m.back();
-    for (double s : {lo, 0.0, hi}) {
-      if (!vehicles::SolveDoubleWishbone(p.hardpoints, s, 0.0).ok) {
-        m.Required("hardpoints_in").Fail("the linkage does not assemble at wheel travel " +
-                                         FormatDouble(s) + " m");
-      }
+    // The linkage must assemble over the whole travel the carrier can reach: the table the
+    // vehicle builds, walked the same way (continuation in 1 cm steps). Three solves from
+    // scratch (rebound end, 0, bump end) passed hard points that fail in between (NEW-5 of the
+    // probe at 8ff4def: an internal error when the vehicle was built).
+    try {
+      vehicles::CornerShockLengthTable(p);
+    } catch (const std::runtime_error&) {
+      const vehicles::TravelRange travel = vehicles::CarrierTravel(p);
+      char range[64];
+      std::snprintf(range, sizeof(range), "%.3f .. %.3f m", travel.lower_m, travel.upper_m);
+      m.Required("hardpoints_in").Fail(
+          std::string("the linkage does not assemble over the wheel travel ") + range +
+          " (rebound and bump travel, the stop stroke and the hard limit beyond it): check the "
+          "hard points");
     }
   }
   return p;
 }
+
+constexpr double kMaxWheelSize_m = 10.0;   // radius and widths of a wheel
 
 vehicles::WheelParams ReadWheel(const StrictNode& node) {
   const StrictMap m =
@@ -336,6 +348,15 @@ vehicles::WheelParams ReadWheel(const StrictNode& node) {
   p.soil_footprint_width_m = m.Has("soil_footprint_width_m")
                                  ? m.Required("soil_footprint_width_m").AsPositive()
                                  : p.width_m;
+  // The soil grid under a wheel and its contact samples are sized by these lengths: a 1000 m
+  // wide wheel asked for gigabytes while stepping (B64 of the probe at 8ff4def). 10 m is five
+  // times the largest tyre made.
+  for (const char* key : {"radius_m", "width_m", "soil_footprint_width_m"}) {
+    if (m.Has(key) && m.Required(key).AsDouble() > kMaxWheelSize_m) {
+      m.Required(key).Fail("must be at most " + FormatDouble(kMaxWheelSize_m) + " m, got " +
+                           FormatDouble(m.Required(key).AsDouble()));
+    }
+  }
   return p;
 }
 
@@ -734,6 +755,27 @@ void TrackStations(VehicleParams* v) {
   }
 }
 
+// The chassis envelope's sample points for obstacle contact are spaced by the wheel radius
+// (vehicles::EnvelopeObstacleSpacing_m): a tiny wheel on a big body would ask for millions of
+// them (NEW-4 of the probe at 8ff4def: a 1e-6 m wheel took 8 GB, then std::bad_alloc).
+void CheckEnvelopeSampling(const VehicleParams& v, const StrictNode& radius_node) {
+  const double spacing_m = vehicles::EnvelopeObstacleSpacing_m(v);
+  for (const vehicles::EnvelopePiece& piece : v.chassis.envelope) {
+    engine::ConvexShape shape;
+    std::string error;
+    if (!engine::TryMakeConvexHull(piece.points_B, 1.0, &shape, &error)) continue;   // checked
+    const double samples = engine::ShapeSampleCount(shape, spacing_m);
+    if (samples > engine::kMaxShapeSamples) {
+      radius_node.Fail("the chassis envelope piece '" + piece.name + "' is sampled for obstacle "
+                       "contact every 0.1 x radius_m = " + FormatDouble(spacing_m) + " m: " +
+                       std::to_string(static_cast<long long>(std::min(samples, 1e18))) +
+                       " points, more than the limit of " +
+                       std::to_string(static_cast<long long>(engine::kMaxShapeSamples)) +
+                       "; a wheel this small needs a smaller envelope");
+    }
+  }
+}
+
 }  // namespace
 
 vehicles::VehicleParams LoadVehicle(const std::string& path) {
@@ -801,6 +843,10 @@ vehicles::VehicleParams LoadVehicle(const std::string& path) {
     }
   }
   v.wheel = ReadWheel(top.Required("wheel"));
+  CheckEnvelopeSampling(v, top.Required("wheel")
+                               .AsMap({"radius_m", "width_m", "mass_kg", "inertia_kgm2",
+                                       "soil_footprint_width_m"})
+                               .Required("radius_m"));
   v.tire = ReadTire(top.Required("tire"));
   v.engine = ReadEngine(top.Required("engine"));
   v.transmission = ReadTransmission(top.Required("transmission"));

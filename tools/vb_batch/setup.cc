@@ -161,6 +161,9 @@ vb::batch::MatrixSpec BuildSpec(const Options& o, const std::vector<std::string>
     }
   }
   spec.vehicles = NameList("--vehicles", o.vehicles, vb::io::VehicleNames(DataDir()));
+  for (const std::string& v : spec.vehicles) {
+    vb::io::ListedDataFile(DataDir(), "vehicles", v, "--vehicles");   // the name rule
+  }
   // "all" is the paper's systems; the oracle (and its budget variants) only when named.
   if (o.systems == "all") {
     spec.systems = vb::controllers::ControllerNames();
@@ -176,8 +179,8 @@ vb::batch::MatrixSpec BuildSpec(const Options& o, const std::vector<std::string>
   // The soil file is read in every worker that needs it; check it once here so a bad name or
   // file is one clear error, not a batch of error trials. Names come from the listing, so
   // "../x" cannot reach outside soils/.
-  NameList("--soil", o.soil, vb::io::SoilNames(DataDir()));
-  vb::soil::SoilConfig soil = vb::io::LoadSoil(DataDir() + "/soils/" + o.soil + ".yaml");
+  vb::soil::SoilConfig soil =
+      vb::io::LoadSoil(vb::io::ListedDataFile(DataDir(), "soils", o.soil, "--soil"));
   if (parsed != nullptr) {
     parsed->soil = std::move(soil);
     // A vehicle file that does not load is left to the workers: each of its trials becomes an

@@ -109,8 +109,6 @@ pid_t g_parent = 0;   // the batch that forked this worker (DieWithParent)
         value.sival_int = seq;
         ::sigqueue(g_parent, kComputedSignal, value);
       }
-      // Trajectory first: a record's presence implies its trajectory is complete.
-      vb::io::WriteTrajectoryCsv(r, stem_path + "_traj.csv");
       // The task's hash: the parent's, taken from the same files it parsed this task from.
       vb::io::Provenance provenance =
           vb::io::MakeProvenance(task, spec, parsed_task ? t.task_fnv1a64 : std::string());
@@ -120,7 +118,7 @@ pid_t g_parent = 0;   // the batch that forked this worker (DieWithParent)
                                    ? std::string()
                                    : vb::io::PerceptionFile(key.perception, DataDir()),
                                &provenance);
-      vb::io::WriteTrialJson(r, stem_path + ".json", provenance);
+      vb::io::WriteTrialFiles(r, stem_path, provenance);   // trajectory first
     } catch (const vb::InputError& e) {
       vb::io::WriteUnrunTrialJson(stem_path + ".json", t.name, key.pair,
                                   ProvenanceFor(t, key, o.rules), "error", e.what());

@@ -12,6 +12,7 @@
 #include "io/cli_args.h"
 #include "io/model_store.h"
 #include "io/result_io.h"
+#include "io/data_dir.h"
 #include "io/soil_io.h"
 #include "io/task_io.h"
 #include "io/vehicle_io.h"
@@ -108,7 +109,8 @@ class FailuresMode : public Mode {
                                  rows_.front().vehicle + "): one dataset has one wheel count");
       }
     }
-    vehicle_file_ = DataDir() + "/vehicles/" + rows_.front().vehicle + ".yaml";
+    vehicle_file_ = vb::io::ListedDataFile(DataDir(), "vehicles", rows_.front().vehicle, "vehicle",
+                                           o.from_dir);
     vehicle_ = vb::io::LoadVehicle(vehicle_file_);
   }
 

@@ -6,6 +6,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -64,30 +65,112 @@ std::string EpisodeFile(const Options& o, long e) {
   return (fs::path(o.out_dir) / "episodes" / name).string();
 }
 
-// Whether episode e needs recording: no file, an unreadable one, or (with --rerun-stale) one
-// made by another build. A file of another build without --rerun-stale goes to *stale.
-bool NeedsRun(const Options& o, long e, std::vector<std::string>* stale) {
-  const std::string path = EpisodeFile(o, e);
-  if (!fs::exists(path)) return true;
-  std::map<std::string, std::string> attrs;
-  try {
-    attrs = vb::io::ReadEpisodeAttributes(path);
-  } catch (const vb::InputError& err) {
-    std::fprintf(stderr, "vb_collect: warning: %s; re-recording\n", err.what());
-    return true;
+// What resume and assembly find in an episode file (NEW-6 of the probe at 8ff4def: resume took
+// any readable file of the same build, so shards made with other flags, or a file with damaged
+// data, went into the dataset).
+enum class EpisodeFileState {
+  kGood,
+  kUnreadable,      // missing, cut, or a dataset that does not read back (damaged data)
+  kOtherBuild,      // made by another build of vb (--rerun-stale replaces it)
+  kOtherSettings,   // made with other settings, or with arrays of other shapes
+};
+
+// "crop_size=16 (this run: crop_size=64)": the key=value words of two settings strings that
+// differ (all of `theirs` when it has none, an episode file of an older build).
+std::string SettingsDifference(const std::string& theirs, const std::string& ours) {
+  if (theirs.empty()) return "none recorded (this run: " + ours + ")";
+  const std::vector<std::string> a = vb::io::SplitList(theirs, ' ');
+  const std::vector<std::string> b = vb::io::SplitList(ours, ' ');
+  std::string only_a, only_b;
+  for (const std::string& w : a) {
+    if (std::find(b.begin(), b.end(), w) == b.end()) only_a += (only_a.empty() ? "" : " ") + w;
   }
-  if (attrs["id"] != std::to_string(e)) return true;
+  for (const std::string& w : b) {
+    if (std::find(a.begin(), a.end(), w) == a.end()) only_b += (only_b.empty() ? "" : " ") + w;
+  }
+  return only_a + " (this run: " + only_b + ")";
+}
+
+// Checks the episode file of episode e against this run: complete and every dataset readable
+// (all of its data is read once), its id, its build, the run's settings (the vb_settings
+// attribute: crops, sample period, vehicle and soil files, ...) and the shapes of its crops.
+EpisodeFileState CheckEpisodeFile(const Options& o, const std::string& settings, long e,
+                                  const std::string& path, std::string* why) {
+  vb::dataset::EpisodeRecord r;
+  try {
+    r = vb::io::ReadEpisodeFile(path);
+  } catch (const vb::InputError& err) {
+    *why = err.what();
+    return EpisodeFileState::kUnreadable;
+  }
+  const auto attr = [&](const char* name) {
+    const vb::dataset::Attribute* a = r.FindAttribute(name);
+    return a == nullptr ? std::string() : a->text;
+  };
+  if (attr("id") != std::to_string(e)) {
+    *why = path + ": holds episode " + attr("id") + ", not " + std::to_string(e);
+    return EpisodeFileState::kUnreadable;
+  }
   vb::batch::TrialRow row;
-  row.status = attrs["status"];
-  row.git_commit = attrs["git_commit"];
-  row.vb_version = attrs["vb_version"];
+  row.status = attr("status");
+  row.git_commit = attr("git_commit");
+  row.vb_version = attr("vb_version");
   const vb::batch::ResumeDecision d =
       vb::batch::DecideResume(&row, "", vb::io::BuildGitCommit(), VB_VERSION);
   if (d.action == vb::batch::ResumeAction::kStale) {
-    if (o.rerun_stale) return true;
-    stale->push_back(path + ": " + d.reason);
+    *why = path + ": " + d.reason;
+    return EpisodeFileState::kOtherBuild;
   }
-  return false;
+  if (attr("vb_settings") != settings) {
+    *why = path + ": made with other settings: " + SettingsDifference(attr("vb_settings"), settings);
+    return EpisodeFileState::kOtherSettings;
+  }
+  // An empty episode (a failed demonstration, filtered out) has no arrays to compare.
+  for (const vb::dataset::CropSpec& c : MakeSampleConfig(o).crops) {
+    if (attr("total_steps") == "0") break;
+    const vb::dataset::Column* col = r.Find("observations/" + c.name);
+    const std::vector<size_t> want = {static_cast<size_t>(c.size_cells),
+                                      static_cast<size_t>(c.size_cells)};
+    if (col == nullptr || col->row_shape != want) {
+      *why = path + ": observations/" + c.name + " is not " + std::to_string(c.size_cells) +
+             " x " + std::to_string(c.size_cells) + " per sample, as this run's crops";
+      return EpisodeFileState::kOtherSettings;
+    }
+  }
+  return EpisodeFileState::kGood;
+}
+
+// Whether episode e needs recording: no file, an unreadable or damaged one (re-recorded, with a
+// warning), or (with --rerun-stale) one made by another build. A file of another build without
+// --rerun-stale goes to *stale, one of other settings to *foreign (both refused by the caller).
+bool NeedsRun(const Options& o, const std::string& settings, long e,
+              std::vector<std::string>* stale, std::vector<std::string>* foreign) {
+  const std::string path = EpisodeFile(o, e);
+  if (!fs::exists(path)) return true;
+  std::string why;
+  switch (CheckEpisodeFile(o, settings, e, path, &why)) {
+    case EpisodeFileState::kGood:
+      return false;
+    case EpisodeFileState::kUnreadable:
+      std::fprintf(stderr, "vb_collect: warning: %s; re-recording\n", why.c_str());
+      return true;
+    case EpisodeFileState::kOtherBuild:
+      if (o.rerun_stale) return true;
+      stale->push_back(why);
+      return false;
+    case EpisodeFileState::kOtherSettings:
+      foreign->push_back(why);
+      return false;
+  }
+  return true;
+}
+
+// The refusal of a list of episode files (at most 10 shown).
+[[noreturn]] void RefuseEpisodes(const Options& o, const std::vector<std::string>& files,
+                                 const std::string& what, const std::string& remedy) {
+  std::string msg = std::to_string(files.size()) + " episode file(s) " + what + ":\n";
+  for (size_t i = 0; i < files.size() && i < 10; ++i) msg += "  " + files[i] + "\n";
+  throw vb::InputError(o.out_dir, 0, "--out", msg + remedy);
 }
 
 // In a forked worker: records `items` (with their episodes to do), writes each episode file.
@@ -96,9 +179,13 @@ using WorkList = std::vector<std::pair<const WorkItem*, std::vector<long>>>;
 [[noreturn]] void RunWorker(const Options& o, Mode& mode, const WorkList& work) {
   int code = 0;
   try {
+    const std::string settings = mode.Settings();
     for (const auto& [item, todo] : work) {
       mode.Run(*item, todo, [&](long e, const vb::dataset::EpisodeRecord& r) {
-        vb::io::WriteEpisodeFile(r, EpisodeFile(o, e));
+        // Each file carries the settings it was made with: resume and assembly compare them.
+        vb::dataset::EpisodeRecord with_settings = r;
+        with_settings.SetText("vb_settings", settings);
+        vb::io::WriteEpisodeFile(with_settings, EpisodeFile(o, e));
         if (!o.quiet) {
           const vb::dataset::Attribute* status = r.FindAttribute("status");
           const vb::dataset::Attribute* sim = r.FindAttribute("sim_time_s");
@@ -130,29 +217,31 @@ int Run(const Options& o) {
                               : o.mode == "teleop"   ? MakeTeleopMode(o)
                                                      : MakeDemosMode(o);
   const vb::batch::Shard shard = vb::batch::ParseShard(o.shard);
-  const int lock_fd = vb::io::PrepareOutputDir(o.out_dir, "episodes", mode->Settings(),
-                                               "vb_collect");
+  const std::string settings = mode->Settings();
+  const int lock_fd = vb::io::PrepareOutputDir(o.out_dir, "episodes", settings, "vb_collect");
   const std::vector<WorkItem>& items = mode->items();
 
   // Resume: what is left of this shard's items.
   WorkList todo;
-  std::vector<std::string> stale;
+  std::vector<std::string> stale, foreign;
   long total = 0, left = 0;
   for (size_t i = 0; i < items.size(); ++i) {
     total += static_cast<long>(items[i].episodes.size());
     if (static_cast<int>(i % static_cast<size_t>(shard.count)) != shard.index) continue;
     std::vector<long> episodes;
     for (long e : items[i].episodes) {
-      if (NeedsRun(o, e, &stale)) episodes.push_back(e);
+      if (NeedsRun(o, settings, e, &stale, &foreign)) episodes.push_back(e);
     }
     left += static_cast<long>(episodes.size());
     if (!episodes.empty()) todo.emplace_back(&items[i], episodes);
   }
+  if (!foreign.empty()) {
+    RefuseEpisodes(o, foreign, "do not belong to this run",
+                   "remove them (or collect them with their own settings into another --out)");
+  }
   if (!stale.empty()) {
-    std::string msg = std::to_string(stale.size()) + " episode(s) come from another build:\n";
-    for (size_t i = 0; i < stale.size() && i < 10; ++i) msg += "  " + stale[i] + "\n";
-    msg += "use --rerun-stale to replace them, or another --out";
-    throw vb::InputError(o.out_dir, 0, "--out", msg);
+    RefuseEpisodes(o, stale, "come from another build",
+                   "use --rerun-stale to replace them, or another --out");
   }
   const int jobs = std::max(1, std::min<int>(o.jobs, static_cast<int>(todo.size())));
   std::printf("vb_collect %s: %ld episodes in %zu work items, shard %d/%d: %ld to record on %d "
@@ -219,7 +308,8 @@ int Run(const Options& o) {
   }
 
   // Assembly once every episode of the dataset is there (all shards' files in one episodes/).
-  std::vector<std::string> files;
+  // Every file is checked as on resume, those of other shards too (copied in by hand).
+  std::vector<std::string> files, bad;
   long missing = 0, left_out = 0;
   double sim_s = 0.0;
   for (const WorkItem& item : items) {
@@ -227,6 +317,11 @@ int Run(const Options& o) {
       const std::string path = EpisodeFile(o, e);
       if (!fs::exists(path)) {
         ++missing;
+        continue;
+      }
+      std::string why;
+      if (CheckEpisodeFile(o, settings, e, path, &why) != EpisodeFileState::kGood) {
+        bad.push_back(why);
         continue;
       }
       std::map<std::string, std::string> a = vb::io::ReadEpisodeAttributes(path);
@@ -239,6 +334,10 @@ int Run(const Options& o) {
     }
   }
   std::printf("vb_collect: %ld episodes recorded in %.1f s wall (this run)\n", left, wall_s);
+  if (!bad.empty()) {
+    RefuseEpisodes(o, bad, "cannot go into the dataset",
+                   "re-record them: remove them and run each shard's command again");
+  }
   if (missing > 0) {
     std::printf("vb_collect: %ld episode(s) of other shards missing; put all shards' episodes/ "
                 "files into one directory and run the command with --shard 0/1 to assemble\n",

@@ -7,6 +7,7 @@
 #include "io/data_dir.h"
 #include "vb/batch/matrix.h"
 #include "vb/engine/error.h"
+#include "vb/engine/file_name.h"
 #include "vb/engine/runner/episode.h"
 #include "vb/engine/runner/systems.h"
 
@@ -77,6 +78,21 @@ Options:
 Exit codes: 0 done, 2 bad input, 1 I/O or other errors, 128+signal when interrupted.
 )";
 
+std::string DatasetIdProblem(const std::string& id) {
+  // Minari maps "namespace/name-vN" onto directories under MINARI_DATASETS_PATH: each part is
+  // a file-name component (no "..", no absolute path), as every other name vb writes.
+  const std::vector<std::string> parts = vb::io::SplitList(id, '/');
+  if (parts.empty() || parts.size() > kMaxDatasetIdParts) {
+    return "'" + id + "': expected 1 to " + std::to_string(kMaxDatasetIdParts) +
+           " parts separated by '/' (namespace/name-vN)";
+  }
+  for (const std::string& part : parts) {
+    const std::string problem = vb::FileNameComponentProblem(part, vb::io::kMaxDataNameLength);
+    if (!problem.empty()) return "'" + id + "': part '" + part + "': " + problem;
+  }
+  return "";
+}
+
 Options ParseArgs(int argc, char** argv) {
   Options o;
   constexpr double kMaxS = vb::runner::kMaxTimeLimit_s;
@@ -137,7 +153,15 @@ Options ParseArgs(int argc, char** argv) {
                          "teleop needs recordings of vb_view teleop (files or directories)");
   }
   if (o.tasks_dir.empty()) o.tasks_dir = vb::io::TasksDir();
+  // The tools' one name rule (vehicles and soils of the data directory's listings; the failures
+  // and teleop modes take the vehicle from their records and check it there).
+  if (o.mode == "explore" || o.mode == "demos") {
+    vb::io::ListedDataFile(vb::io::DataDir(), "vehicles", o.vehicle, "--vehicle");
+  }
+  vb::io::ListedDataFile(vb::io::DataDir(), "soils", o.soil, "--soil");
   if (o.dataset_id.empty()) o.dataset_id = "vb/" + o.mode + "-v0";
+  const std::string id_problem = DatasetIdProblem(o.dataset_id);
+  if (!id_problem.empty()) throw vb::InputError("", 0, "--dataset-id", id_problem);
   vb::batch::ParseShard(o.shard);   // validates
   MakeSampleConfig(o);              // validates crops and the sample period
   return o;

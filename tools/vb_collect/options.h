@@ -46,6 +46,11 @@ struct Options {
   bool help = false;
 };
 
+// Why `id` cannot be a Minari dataset id, or "": 1 to kMaxDatasetIdParts parts separated by
+// '/', each a file-name component (vb::FileNameComponentProblem).
+constexpr size_t kMaxDatasetIdParts = 4;
+std::string DatasetIdProblem(const std::string& id);
+
 // Throws vb::InputError naming the flag.
 Options ParseArgs(int argc, char** argv);
 

@@ -23,6 +23,7 @@
 #include "io/build_info.h"
 #include "io/cli_args.h"
 #include "io/result_io.h"
+#include "io/data_dir.h"
 #include "io/soil_io.h"
 #include "io/task_io.h"
 #include "io/task_ref.h"
@@ -297,7 +298,8 @@ class TeleopMode : public Mode {
                                  first.row.vehicle + "': one dataset has one wheel count");
       }
     }
-    vehicle_file_ = DataDir() + "/vehicles/" + first.row.vehicle + ".yaml";
+    vehicle_file_ = vb::io::ListedDataFile(DataDir(), "vehicles", first.row.vehicle, "vehicle",
+                                           first.json_path);
     vehicle_ = vb::io::LoadVehicle(vehicle_file_);
     const std::string vehicle_hash = vb::io::FileFnv1a64Hex(vehicle_file_);
     for (const Recording& r : recs_) {
@@ -335,8 +337,9 @@ class TeleopMode : public Mode {
     for (long e : todo) {
       const Recording& rec = recs_[static_cast<size_t>(e)];
       const vb::terrain::TaskSpec task = FindTask(rec, o_.tasks_dir);
-      const std::string soil_file =
-          DataDir() + "/soils/" + (rec.soil.empty() ? o_.soil : rec.soil) + ".yaml";
+      const std::string soil_file = vb::io::ListedDataFile(
+          DataDir(), "soils", rec.soil.empty() ? o_.soil : rec.soil, "provenance.soil",
+          rec.json_path);
       const std::optional<vb::soil::SoilConfig> soil = vb::io::LoadSoilIfNeeded(task, soil_file);
       if (soil && !rec.soil_fnv1a64.empty() &&
           vb::io::FileFnv1a64Hex(soil_file) != rec.soil_fnv1a64) {

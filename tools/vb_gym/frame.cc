@@ -3,25 +3,43 @@
 #include "frame.h"
 
 #include <errno.h>
+#include <poll.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <chrono>
+#include <cmath>
 #include <cstring>
 
 namespace vb::gym {
 
 namespace {
 
-// Reads exactly n bytes. Returns n on success, 0 on EOF before the first byte, -1 on EOF in the
-// middle or a read error.
-long ReadExact(int fd, uint8_t* out, size_t n) {
+double Now_s() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+// Reads exactly n bytes, waiting at most until `deadline_s` (Now_s() clock; <= 0: no limit).
+// Returns n on success, 0 on EOF before the first byte, -1 on EOF in the middle or a read
+// error, -2 when the deadline passed.
+long ReadExact(int fd, uint8_t* out, size_t n, double deadline_s) {
   size_t got = 0;
   while (got < n) {
+    if (deadline_s > 0.0) {
+      const double left_s = deadline_s - Now_s();
+      if (left_s <= 0.0) return -2;
+      pollfd p{fd, POLLIN, 0};
+      const int ready = ::poll(&p, 1, static_cast<int>(std::ceil(left_s * 1000.0)));
+      if (ready < 0 && errno != EINTR) return -1;
+      if (ready <= 0) continue;
+    }
     const ssize_t r = ::read(fd, out + got, n - got);
     if (r > 0) {
       got += static_cast<size_t>(r);
     } else if (r == 0) {
       return got == 0 ? 0 : -1;
-    } else if (errno != EINTR) {
+    } else if (errno != EINTR && errno != EAGAIN) {
       return -1;
     }
   }
@@ -59,12 +77,22 @@ void StoreU32(uint32_t v, uint8_t* p) {
 
 ReadStatus ReadFrame(int fd, Frame* frame, std::string* error) {
   uint8_t prefix[8];
-  const long r = ReadExact(fd, prefix, sizeof(prefix));
-  if (r == 0) return ReadStatus::kEof;
-  if (r < 0) {
-    *error = "truncated frame prefix (the client closed the stream inside a frame)";
+  // The first byte without a time limit (the client decides when to send), the rest with one.
+  const long first = ReadExact(fd, prefix, 1, 0.0);
+  if (first == 0) return ReadStatus::kEof;
+  const double deadline_s = Now_s() + kFrameCompletionLimit_s;
+  const auto stalled = [&](long r, const char* part) {
+    *error = r == -2 ? std::string("the client stalled inside a frame (") + part +
+                           " incomplete after " + std::to_string(static_cast<int>(
+                               kFrameCompletionLimit_s)) + " s)"
+                     : std::string("truncated frame ") + part +
+                           (std::string(part) == "prefix"
+                                ? " (the client closed the stream inside a frame)" : "");
     return ReadStatus::kFramingError;
-  }
+  };
+  if (first < 0) return stalled(first, "prefix");
+  const long rest = ReadExact(fd, prefix + 1, sizeof(prefix) - 1, deadline_s);
+  if (rest != static_cast<long>(sizeof(prefix) - 1)) return stalled(rest == 0 ? -1 : rest, "prefix");
   const uint32_t header_bytes = LoadU32(prefix);
   const uint32_t payload_bytes = LoadU32(prefix + 4);
   if (header_bytes == 0 || header_bytes > kMaxHeaderBytes) {
@@ -78,21 +106,24 @@ ReadStatus ReadFrame(int fd, Frame* frame, std::string* error) {
     return ReadStatus::kFramingError;
   }
   frame->header.resize(header_bytes);
-  if (ReadExact(fd, reinterpret_cast<uint8_t*>(&frame->header[0]), header_bytes) !=
-      static_cast<long>(header_bytes)) {
-    *error = "truncated frame header";
-    return ReadStatus::kFramingError;
-  }
-  frame->payload.resize(payload_bytes);
-  if (payload_bytes > 0 && ReadExact(fd, frame->payload.data(), payload_bytes) !=
-                               static_cast<long>(payload_bytes)) {
-    *error = "truncated frame payload";
-    return ReadStatus::kFramingError;
+  const long h = ReadExact(fd, reinterpret_cast<uint8_t*>(&frame->header[0]), header_bytes,
+                           deadline_s);
+  if (h != static_cast<long>(header_bytes)) return stalled(h == 0 ? -1 : h, "header");
+  // In chunks: memory follows what the client actually sends, not what it announces.
+  constexpr size_t kChunkBytes = 1u << 20;
+  frame->payload.clear();
+  while (frame->payload.size() < payload_bytes) {
+    const size_t at = frame->payload.size();
+    const size_t n = std::min<size_t>(kChunkBytes, payload_bytes - at);
+    frame->payload.resize(at + n);
+    const long p = ReadExact(fd, frame->payload.data() + at, n, deadline_s);
+    if (p != static_cast<long>(n)) return stalled(p == 0 ? -1 : p, "payload");
   }
   return ReadStatus::kOk;
 }
 
 bool WriteFrame(int fd, const std::string& header, const std::vector<uint8_t>& payload) {
+  if (header.size() > kMaxHeaderBytes || payload.size() > kMaxPayloadBytes) return false;
   uint8_t prefix[8];
   StoreU32(static_cast<uint32_t>(header.size()), prefix);
   StoreU32(static_cast<uint32_t>(payload.size()), prefix + 4);

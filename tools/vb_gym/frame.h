@@ -15,6 +15,13 @@ namespace vb::gym {
 // cannot be trusted after it).
 constexpr uint32_t kMaxHeaderBytes = 1u << 20;
 constexpr uint32_t kMaxPayloadBytes = 256u << 20;
+// Deepest nesting of objects and lists in a request header (the protocol's own requests nest 3
+// levels); deeper is an error reply, before anything recurses over the value.
+constexpr int kMaxHeaderDepth = 32;
+// Once a frame's first byte has arrived, the rest must follow within this time (between frames
+// the client may take as long as it likes): a client stuck inside a frame is a framing error, not
+// a server that waits forever.
+constexpr double kFrameCompletionLimit_s = 60.0;
 
 struct Frame {
   std::string header;             // JSON text
@@ -24,13 +31,16 @@ struct Frame {
 enum class ReadStatus {
   kOk,
   kEof,           // the peer closed the stream cleanly between frames
-  kFramingError,  // truncated frame or announced lengths beyond the limits (message says which)
+  kFramingError,  // truncated or stalled frame, or lengths beyond the limits (message says which)
 };
 
-// Reads one frame from file descriptor fd (blocking). On kFramingError *error says what.
+// Reads one frame from file descriptor fd (blocking until its first byte, then at most
+// kFrameCompletionLimit_s for the rest). The payload buffer grows with the bytes that arrive,
+// not with the length the prefix announces. On kFramingError *error says what.
 ReadStatus ReadFrame(int fd, Frame* frame, std::string* error);
 
-// Writes one frame; false if the peer has gone (EPIPE) or the write failed.
+// Writes one frame; false if the peer has gone (EPIPE) or the write failed, and false without
+// writing anything for a header or payload above the limits (a uint32 length never wraps).
 bool WriteFrame(int fd, const std::string& header, const std::vector<uint8_t>& payload);
 
 // Appends the raw little-endian bytes of `values` to *payload (the host must be little-endian:

@@ -11,6 +11,7 @@
 #include "frame.h"
 #include "io/cli_args.h"
 #include "io/data_dir.h"
+#include "io/result_io.h"
 #include "server.h"
 #include "vb/engine/error.h"
 
@@ -28,7 +29,10 @@ Every request gets one reply; a bad request gets an error frame naming what is w
 server stays usable. Diagnostics go to stderr, never to stdout.
 
 The process ends when the client sends close (exit 0), closes its end of the pipe (exit 0), or
-sends a frame that breaks the framing (an error frame, then exit 2).
+sends a frame that breaks the framing (an error frame, then exit 2): lengths above the limits
+(header 1 MiB, payload 256 MiB), a stream closed inside a frame, or a frame whose first byte
+arrived more than 60 s before its last. A header nested deeper than 32 levels, bytes that are
+not UTF-8, and a write that fails (a full disk) are error replies; the server stays usable.
 
 environment:
   VB_DATA_DIR   directory of vehicles/ and soils/ (default: share/vb/data next to this
@@ -71,12 +75,20 @@ int main(int argc, char** argv) {
       if (status == vb::gym::ReadStatus::kEof) return 0;
       if (status == vb::gym::ReadStatus::kFramingError) {
         const std::string header =
-            "{\"type\":\"error\",\"op\":\"?\",\"kind\":\"framing\",\"message\":\"" + error + "\"}";
+            "{\"type\":\"error\",\"op\":\"?\",\"kind\":\"framing\",\"message\":" +
+            vb::io::JsonString(error) + "}";
         vb::gym::WriteFrame(out_fd, header, {});
         std::fprintf(stderr, "vb_gym: error: %s\n", error.c_str());
         return 2;
       }
       const bool keep_going = server.Handle(request, &reply, &payload);
+      if (reply.size() > vb::gym::kMaxHeaderBytes || payload.size() > vb::gym::kMaxPayloadBytes) {
+        // The client's reader would refuse it (and a uint32 length must not wrap): say so.
+        reply = "{\"type\":\"error\",\"op\":\"?\",\"kind\":\"request\",\"message\":"
+                "\"the reply would exceed the protocol's frame limits (a header of " +
+                std::to_string(reply.size()) + " bytes); ask for less at a time\"}";
+        payload.clear();
+      }
       if (!vb::gym::WriteFrame(out_fd, reply, payload)) return 0;   // the client has gone
       if (!keep_going) return 0;
     }

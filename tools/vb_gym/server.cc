@@ -26,7 +26,9 @@
 #include "io/yaml_strict.h"
 #include "vb/batch/index.h"
 #include "vb/controllers/pid_controller.h"
+#include "io/data_dir.h"
 #include "vb/engine/error.h"
+#include "vb/engine/file_name.h"
 
 namespace vb::gym {
 
@@ -50,8 +52,48 @@ const std::vector<std::string> kStateFields = {
     "goal_x_m",       "goal_y_m",      "goal_distance_m", "local_goal_x_m",
     "local_goal_y_m", "heading_error_rad", "throttle",  "steering",
     "braking"};
+// Room in an observation frame's payload for the crops: the protocol's limit less a megabyte for
+// the state and wheel arrays (a few hundred bytes each; a vehicle has at most a few dozen
+// wheels).
+constexpr uint64_t kMaxCropPayloadBytes = kMaxPayloadBytes - (1u << 20);
+
 const std::vector<std::string> kWheelFields = {"in_contact", "surface",    "normal_force_n",
                                                "sinkage_m",  "spin_radps", "slip"};
+
+// Every reply goes through Dump: bytes that are not UTF-8 (a task path, a vehicle file's message,
+// a request's own bytes quoted in an error) become U+FFFD instead of making nlohmann throw
+// type_error.316, so a reply can always be encoded (NEW-1 of the probe at 8ff4def).
+std::string Dump(const json& j) { return j.dump(-1, ' ', false, json::error_handler_t::replace); }
+
+// A client's value or key quoted in an error message: at most kMaxQuotedBytes of it (a request
+// may hold a megabyte), never the whole. Nesting is bounded when the header is parsed, so dump()
+// cannot recurse deeply here.
+constexpr size_t kMaxQuotedBytes = 80;
+std::string Abridged(const std::string& text, size_t max_bytes = kMaxQuotedBytes) {
+  if (text.size() <= max_bytes) return text;
+  return text.substr(0, max_bytes) + "... (" + std::to_string(text.size()) + " bytes)";
+}
+std::string Quoted(const json& v) { return Abridged(Dump(v)); }
+
+// The request header as JSON: a UTF-8 JSON object nested at most kMaxHeaderDepth deep. The
+// depth is checked while parsing (a parser callback), before anything could recurse over the
+// value: 200 000 nested brackets fit in the 1 MiB header limit and overflowed the stack in
+// dump() (NEW-2).
+json ParseHeader(const std::string& text) {
+  const json::parser_callback_t depth_check = [](int depth, json::parse_event_t event, json&) {
+    if ((event == json::parse_event_t::object_start ||
+         event == json::parse_event_t::array_start) && depth >= kMaxHeaderDepth) {
+      throw RequestError("header nests objects and lists deeper than " +
+                         std::to_string(kMaxHeaderDepth) + " levels");
+    }
+    return true;
+  };
+  try {
+    return json::parse(text, depth_check);
+  } catch (const json::parse_error& e) {
+    throw RequestError(std::string("header is not valid JSON: ") + Abridged(e.what(), 4 * kMaxQuotedBytes));
+  }
+}
 
 std::string Fmt(double x) {
   char buf[40];
@@ -62,7 +104,7 @@ std::string Fmt(double x) {
 void CheckKeys(const json& j, const std::string& op, const std::vector<std::string>& allowed) {
   for (auto it = j.begin(); it != j.end(); ++it) {
     if (std::find(allowed.begin(), allowed.end(), it.key()) == allowed.end()) {
-      throw RequestError("op '" + op + "': unknown key '" + it.key() +
+      throw RequestError("op '" + op + "': unknown key '" + Abridged(it.key()) +
                          "'; valid: " + io::JoinNames(allowed));
     }
   }
@@ -76,11 +118,11 @@ double GetNumber(const json& j, const std::string& op, const std::string& key, d
   }
   const json& v = j.at(key);
   if (!v.is_number()) {
-    throw RequestError("op '" + op + "': key '" + key + "': expected a number, got " + v.dump());
+    throw RequestError("op '" + op + "': key '" + key + "': expected a number, got " + Quoted(v));
   }
   const double x = v.get<double>();
   if (!std::isfinite(x) || x < lo || x > hi) {
-    throw RequestError("op '" + op + "': key '" + key + "': " + v.dump() + " out of range [" +
+    throw RequestError("op '" + op + "': key '" + key + "': " + Quoted(v) + " out of range [" +
                        Fmt(lo) + ", " + Fmt(hi) + "]");
   }
   return x;
@@ -96,11 +138,11 @@ uint64_t GetUnsigned(const json& j, const std::string& op, const std::string& ke
   const json& v = j.at(key);
   if (!v.is_number_unsigned()) {
     throw RequestError("op '" + op + "': key '" + key +
-                       "': expected a whole number >= 0, got " + v.dump());
+                       "': expected a whole number >= 0, got " + Quoted(v));
   }
   const uint64_t x = v.get<uint64_t>();
   if (x < lo || x > hi) {
-    throw RequestError("op '" + op + "': key '" + key + "': " + v.dump() + " out of range [" +
+    throw RequestError("op '" + op + "': key '" + key + "': " + Quoted(v) + " out of range [" +
                        std::to_string(lo) + ", " + std::to_string(hi) + "]");
   }
   return x;
@@ -114,21 +156,17 @@ std::string GetString(const json& j, const std::string& op, const std::string& k
   }
   const json& v = j.at(key);
   if (!v.is_string()) {
-    throw RequestError("op '" + op + "': key '" + key + "': expected a string, got " + v.dump());
+    throw RequestError("op '" + op + "': key '" + key + "': expected a string, got " + Quoted(v));
   }
   return v.get<std::string>();
 }
 
-// Names that become parts of file names: letters, digits, '_', '-', '.'.
+// Names that become parts of file names (the system) or of the reply's array names (crops):
+// the tools' one file-name rule (vb/engine/file_name.h).
 void CheckName(const std::string& op, const std::string& key, const std::string& name) {
-  const bool ok = !name.empty() && name.size() <= 64 &&
-                  std::all_of(name.begin(), name.end(), [](char c) {
-                    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') ||
-                           (c >= '0' && c <= '9') || c == '_' || c == '-' || c == '.';
-                  }) && name[0] != '.';
-  if (!ok) {
-    throw RequestError("op '" + op + "': key '" + key + "': '" + name +
-                       "' is not a valid name (1-64 of letters, digits, '_', '-', '.')");
+  const std::string problem = FileNameComponentProblem(name, io::kMaxDataNameLength);
+  if (!problem.empty()) {
+    throw RequestError("op '" + op + "': key '" + key + "': '" + Abridged(name) + "': " + problem);
   }
 }
 
@@ -137,7 +175,7 @@ terrain::MapLayer ParseLayer(const std::string& name) {
   if (name == "semantics") return terrain::MapLayer::kSemantics;
   if (name == "occupancy") return terrain::MapLayer::kOccupancy;
   if (name == "friction") return terrain::MapLayer::kFriction;
-  throw RequestError("op 'configure': crops: unknown layer '" + name +
+  throw RequestError("op 'configure': crops: unknown layer '" + Abridged(name) +
                      "'; valid: elevation, semantics, occupancy, friction");
 }
 
@@ -166,21 +204,30 @@ json ResultJson(const runner::TrialResult& r) {
 Server::Server(std::string data_dir) : data_dir_(std::move(data_dir)) {}
 Server::~Server() = default;
 
+namespace {
+
+// An error reply, built without nlohmann (nothing here can throw but bad_alloc): JsonString
+// replaces bytes that are not UTF-8, the op is abridged.
+std::string ErrorReply(const std::string& op, const char* kind, const std::string& message) {
+  return "{\"type\":\"error\",\"op\":" + io::JsonString(Abridged(op)) + ",\"kind\":\"" + kind +
+         "\",\"message\":" + io::JsonString(message) + "}";
+}
+
+}  // namespace
+
 bool Server::Handle(const Frame& request, std::string* reply_header,
                     std::vector<uint8_t>* reply_payload) {
   reply_payload->clear();
   std::string op = "?";
+  // Each failure is one error reply and the server stays usable: a bad request (kind
+  // "request"), a bad file (kind "input", naming file, line and key), a file that cannot be
+  // written (kind "io": a full disk ends no session, NEW-3), anything else (kind "internal").
   try {
-    json j;
-    try {
-      j = json::parse(request.header);
-    } catch (const json::parse_error& e) {
-      throw RequestError(std::string("header is not valid JSON: ") + e.what());
-    }
-    if (!j.is_object()) throw RequestError("header must be a JSON object, got " + j.dump());
+    const json j = ParseHeader(request.header);
+    if (!j.is_object()) throw RequestError("header must be a JSON object, got " + Quoted(j));
     op = GetString(j, "?", "op", "", /*required=*/true);
     if (!request.payload.empty()) {
-      throw RequestError("op '" + op + "': requests carry no payload (got " +
+      throw RequestError("op '" + Abridged(op) + "': requests carry no payload (got " +
                          std::to_string(request.payload.size()) + " bytes)");
     }
     if (op == "hello") {
@@ -193,7 +240,7 @@ bool Server::Handle(const Frame& request, std::string* reply_header,
       }
       json r = {{"type", "hello"}, {"protocol", kProtocolVersion},
                 {"vb_version", VB_VERSION}, {"git_commit", io::BuildGitCommit()}};
-      *reply_header = r.dump();
+      *reply_header = Dump(r);
     } else if (op == "configure") {
       Configure(j, reply_header);
     } else if (op == "reset") {
@@ -208,25 +255,29 @@ bool Server::Handle(const Frame& request, std::string* reply_header,
       WriteIndex(j, reply_header);
     } else if (op == "close") {
       CheckKeys(j, op, {"op"});
-      *reply_header = json{{"type", "bye"}}.dump();
+      *reply_header = Dump(json{{"type", "bye"}});
       return false;
     } else {
-      throw RequestError("unknown op '" + op +
+      throw RequestError("unknown op '" + Abridged(op) +
                          "'; valid: hello, configure, reset, step, result, write_result, "
                          "write_index, close");
     }
   } catch (const RequestError& e) {
     reply_payload->clear();
-    *reply_header = json{{"type", "error"}, {"op", op}, {"kind", "request"},
-                         {"message", e.what()}}.dump();
+    *reply_header = ErrorReply(op, "request", e.what());
   } catch (const InputError& e) {
     reply_payload->clear();
-    *reply_header = json{{"type", "error"}, {"op", op}, {"kind", "input"},
-                         {"message", e.what()}}.dump();
+    *reply_header = ErrorReply(op, "input", e.what());
+  } catch (const IoError& e) {
+    reply_payload->clear();
+    *reply_header = ErrorReply(op, "io", std::string("I/O error: ") + e.what());
   } catch (const json::exception& e) {
     reply_payload->clear();
-    *reply_header = json{{"type", "error"}, {"op", op}, {"kind", "request"},
-                         {"message", std::string("op '") + op + "': " + e.what()}}.dump();
+    *reply_header = ErrorReply(op, "request", "op '" + Abridged(op) + "': " + e.what());
+  } catch (const std::exception& e) {
+    reply_payload->clear();
+    *reply_header = ErrorReply(op, "internal", "op '" + Abridged(op) + "': internal error: " +
+                                                   e.what());
   }
   return true;
 }
@@ -243,14 +294,12 @@ void Server::Configure(const json& j, std::string* reply) {
   }
   for (const json& t : j.at("tasks")) {
     if (!t.is_string()) {
-      throw RequestError("op 'configure': key 'tasks': expected file names, got " + t.dump());
+      throw RequestError("op 'configure': key 'tasks': expected file names, got " + Quoted(t));
     }
     c.task_files.push_back(t.get<std::string>());
   }
   c.vehicle = GetString(j, op, "vehicle", c.vehicle);
   c.soil = GetString(j, op, "soil", c.soil);
-  CheckName(op, "vehicle", c.vehicle);
-  CheckName(op, "soil", c.soil);
   c.perception = GetString(j, op, "perception", c.perception);
   const runner::EpisodeRules defaults;
   c.control_period_s = GetNumber(j, op, "control_period_s", c.control_period_s, 1e-9, 60.0);
@@ -310,17 +359,27 @@ void Server::Configure(const json& j, std::string* reply) {
       GetUnsigned(j, op, "trajectory_every_n_steps", 1, 0, 1000000));
   c.episode_cache = static_cast<int>(GetUnsigned(j, op, "episode_cache", 4, 1, 1000));
 
-  // Load everything before touching the current state: a failed configure changes nothing.
-  const std::vector<std::string> vehicles = io::VehicleNames(data_dir_);
-  if (std::find(vehicles.begin(), vehicles.end(), c.vehicle) == vehicles.end()) {
-    throw RequestError("op 'configure': key 'vehicle': unknown vehicle '" + c.vehicle + "' in " +
-                       data_dir_ + "/vehicles; valid: " + io::JoinNames(vehicles));
+  // Every observation frame must stay within the protocol's payload limit (docs/gym_protocol.md),
+  // which the client's reader enforces as this server's does: each crop is bounded, so is their
+  // sum (NEW-11: 70 crops of 1024 x 1024 made 280 MiB frames).
+  uint64_t crop_bytes = 0;
+  for (const controllers::CropSpec& crop : c.observation.crops) {
+    crop_bytes += static_cast<uint64_t>(crop.size_cells) * crop.size_cells * sizeof(float);
   }
-  const std::string vehicle_file = data_dir_ + "/vehicles/" + c.vehicle + ".yaml";
+  if (crop_bytes > kMaxCropPayloadBytes) {
+    throw RequestError("op 'configure': key 'crops': the crops would make every observation " +
+                       std::to_string(crop_bytes) + " bytes, above the limit of " +
+                       std::to_string(kMaxCropPayloadBytes) + " (the protocol's payload limit " +
+                       "less room for the state arrays)");
+  }
+
+  // Load everything before touching the current state: a failed configure changes nothing.
+  // The tools' one name rule: names of the data directory's listings, never paths.
+  const std::string vehicle_file = io::ListedDataFile(data_dir_, "vehicles", c.vehicle, "vehicle");
+  const std::string soil_file = io::ListedDataFile(data_dir_, "soils", c.soil, "soil");
   vehicles::VehicleParams vehicle = io::LoadVehicle(vehicle_file);
   std::vector<terrain::TaskSpec> tasks;
   tasks.reserve(c.task_files.size());
-  const std::string soil_file = data_dir_ + "/soils/" + c.soil + ".yaml";
   runner::PerceptionParams perception =
       io::ResolvePerception(c.perception, data_dir_, "perception");
   const std::string perception_file =
@@ -353,7 +412,7 @@ void Server::Configure(const json& j, std::string* reply) {
     const int n = config_.observation.crops[i].size_cells;
     arrays.push_back({{"name", config_.crop_names[i]}, {"dtype", "<f4"}, {"shape", {n, n}}});
   }
-  arrays_json_ = arrays.dump();
+  arrays_json_ = Dump(arrays);
 
   json r;
   r["type"] = "configured";
@@ -375,7 +434,7 @@ void Server::Configure(const json& j, std::string* reply) {
                                         : runner::kVertiBenchGoalRadius_m * t.scale}});
   }
   r["tasks"] = tj;
-  *reply = r.dump();
+  *reply = Dump(r);
 }
 
 runner::Episode& Server::EpisodeFor(int task) {
@@ -488,7 +547,7 @@ void Server::ObservationReply(std::string* reply, std::vector<uint8_t>* payload)
     runner::TrialResult r = episode_->Result();
     status = r.status;
     r.trajectory.clear();
-    result_json = ResultJson(r).dump();
+    result_json = Dump(ResultJson(r));
   }
   // After a sim_error the vehicle state may be non-finite: the observation is not rebuilt from
   // it (the arrays are the last good observation's, or zeros right after reset).
@@ -544,7 +603,7 @@ void Server::ResultReply(const json& j, std::string* reply) {
   out["task_name"] = r.task_name;
   out["pair"] = r.spec.pair_index;
   out["seed"] = r.spec.seed;
-  *reply = out.dump();
+  *reply = Dump(out);
 }
 
 void Server::WriteResult(const json& j, std::string* reply) {
@@ -569,10 +628,11 @@ void Server::WriteResult(const json& j, std::string* reply) {
   io::RecordParameterFiles(vehicle_file_, config_.soil, soil_file_, &provenance);
   io::RecordPerception(perception_.name, perception_file_, &provenance);
   const std::string stem = dir + "/" + io::TrialFileStem(r);
-  io::WriteTrialJson(r, stem + ".json", provenance);
-  io::WriteTrajectoryCsv(r, stem + "_traj.csv");
-  *reply = json{{"type", "written"}, {"json", stem + ".json"},
-                {"trajectory", stem + "_traj.csv"}}.dump();
+  // As vb_run writes them: the trajectory first, so a record's presence implies its trajectory
+  // (NEW-3); a write that fails is an error reply of kind "io" (Handle).
+  io::WriteTrialFiles(r, stem, provenance);
+  *reply = Dump(json{{"type", "written"}, {"json", stem + ".json"},
+                     {"trajectory", stem + "_traj.csv"}});
 }
 
 void Server::WriteIndex(const json& j, std::string* reply) {
@@ -644,8 +704,8 @@ void Server::WriteIndex(const json& j, std::string* reply) {
   });
   for (size_t i = 0; i < rows.size(); ++i) rows[i].matrix_index = i;
   io::WriteFileAtomic((dir / "index.csv").string(), batch::IndexCsv(rows));
-  *reply = json{{"type", "indexed"}, {"index", (dir / "index.csv").string()},
-                {"trials", rows.size()}}.dump();
+  *reply = Dump(json{{"type", "indexed"}, {"index", (dir / "index.csv").string()},
+                {"trials", rows.size()}});
 }
 
 }  // namespace vb::gym

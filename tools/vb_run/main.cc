@@ -147,26 +147,17 @@ Options ParseArgs(int argc, char** argv) {
 int Run(const Options& o) {
   const std::string data_dir = vb::io::DataDir();
   const vb::io::DataDirModelStore models(data_dir);
-  const std::vector<std::string> vehicles = vb::io::VehicleNames(data_dir);
-  if (std::find(vehicles.begin(), vehicles.end(), o.vehicle) == vehicles.end()) {
-    throw vb::InputError("", 0, "--vehicle", "unknown vehicle '" + o.vehicle + "' in " + data_dir +
-                                                 "/vehicles; valid: " + vb::io::JoinNames(vehicles));
-  }
+  const std::string vehicle_file =
+      vb::io::ListedDataFile(data_dir, "vehicles", o.vehicle, "--vehicle");
   vb::runner::ValidateSystemName(o.system, "--system");
   // Checked against the listing even when the task needs no soil: a typo is an error either way,
   // and a name can never reach outside soils/.
-  const std::vector<std::string> soils = vb::io::SoilNames(data_dir);
-  if (std::find(soils.begin(), soils.end(), o.soil) == soils.end()) {
-    throw vb::InputError("", 0, "--soil", "unknown soil '" + o.soil + "' in " + data_dir +
-                                              "/soils; valid: " + vb::io::JoinNames(soils));
-  }
+  const std::string soil_file = vb::io::ListedDataFile(data_dir, "soils", o.soil, "--soil");
   const vb::terrain::TaskSpec task = vb::io::LoadTask(o.task_path);
-  const std::string vehicle_file = data_dir + "/vehicles/" + o.vehicle + ".yaml";
   const vb::vehicles::VehicleParams params =
       vb::io::LoadVehicle(vehicle_file);
 
   // Soil parameters only when the task needs them (a rigid task never reads the soil file).
-  const std::string soil_file = data_dir + "/soils/" + o.soil + ".yaml";
   const std::optional<vb::soil::SoilConfig> soil = vb::io::LoadSoilIfNeeded(task, soil_file);
 
   std::vector<int> pairs;
@@ -210,9 +201,7 @@ int Run(const Options& o) {
     vb::io::Provenance provenance = vb::io::MakeProvenance(task, spec);
     vb::io::RecordParameterFiles(vehicle_file, o.soil, soil ? soil_file : "", &provenance);
     vb::io::RecordPerception(rules.perception.name, perception_file, &provenance);
-    // Trajectory first: a record's presence implies its trajectory is complete (as vb_batch).
-    vb::io::WriteTrajectoryCsv(r, stem + "_traj.csv");
-    vb::io::WriteTrialJson(r, stem + ".json", provenance);
+    vb::io::WriteTrialFiles(r, stem, provenance);   // trajectory first (as vb_batch)
     ++counts[static_cast<int>(r.status)];
     if (!o.quiet) {
       std::printf("%s pair %d: %-9s t = %6.2f s  goal distance %6.2f m  RTF %.1f%s%s\n",

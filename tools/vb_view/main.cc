@@ -205,15 +205,10 @@ int Run(const Options& o) {
 
   // Teleoperation.
   const vb::terrain::TaskSpec task = vb::io::LoadTask(o.input);
-  const std::vector<std::string> vehicles = vb::io::VehicleNames(data_dir);
-  if (std::find(vehicles.begin(), vehicles.end(), o.vehicle) == vehicles.end()) {
-    throw vb::InputError("", 0, "--vehicle",
-                         "unknown vehicle '" + o.vehicle + "' in " + data_dir +
-                             "/vehicles; valid: " + vb::io::JoinNames(vehicles));
-  }
-  const std::string vehicle_file = data_dir + "/vehicles/" + o.vehicle + ".yaml";
+  const std::string vehicle_file =
+      vb::io::ListedDataFile(data_dir, "vehicles", o.vehicle, "--vehicle");
+  const std::string soil_file = vb::io::ListedDataFile(data_dir, "soils", o.soil, "--soil");
   const vb::vehicles::VehicleParams params = vb::io::LoadVehicle(vehicle_file);
-  const std::string soil_file = data_dir + "/soils/" + o.soil + ".yaml";
   const std::optional<vb::soil::SoilConfig> soil = vb::io::LoadSoilIfNeeded(task, soil_file);
   vb::view::TeleopOptions teleop_options;
   teleop_options.pair = o.pair;
@@ -242,8 +237,7 @@ int Run(const Options& o) {
     vb::io::RecordParameterFiles(vehicle_file, o.soil, soil ? soil_file : "", &provenance);
     provenance.operator_name = o.operator_name;
     const std::string stem = vb::io::TrialFileStem(result);
-    vb::io::WriteTrajectoryCsv(result, (dir / (stem + "_traj.csv")).string());
-    vb::io::WriteTrialJson(result, (dir / (stem + ".json")).string(), provenance);
+    vb::io::WriteTrialFiles(result, (dir / stem).string(), provenance);
     return std::string(dir_name) + "/" + stem + ".json";
   };
   return Serve(config, o);

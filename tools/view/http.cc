@@ -1,6 +1,9 @@
 #include "view/http.h"
 
+#include <sys/stat.h>
+
 #include <cctype>
+#include <filesystem>
 
 #include "io/result_io.h"
 
@@ -32,6 +35,7 @@ const char* StatusText(int status) {
     case 200: return "OK";
     case 302: return "Found";
     case 400: return "Bad Request";
+    case 403: return "Forbidden";
     case 404: return "Not Found";
     case 405: return "Method Not Allowed";
     case 409: return "Conflict";
@@ -133,6 +137,71 @@ HttpParse ParseHttpRequest(const std::string& data, HttpRequest* request, std::s
     request->headers[Lower(header.substr(0, colon))] = Trim(header.substr(colon + 1));
   }
   return HttpParse::kRequest;
+}
+
+namespace {
+
+// host[:port] is a loopback name of this server.
+bool IsLocalHost(const std::string& host_port, int port) {
+  std::string host = host_port, port_text;
+  const size_t colon = host_port.rfind(':');
+  if (colon != std::string::npos && host_port.find(']', colon) == std::string::npos) {
+    host = host_port.substr(0, colon);
+    port_text = host_port.substr(colon + 1);
+  }
+  host = Lower(host);
+  if (host != "localhost" && host != "127.0.0.1" && host != "[::1]") return false;
+  if (port_text.empty()) return port == 80;
+  return port_text == std::to_string(port);
+}
+
+}  // namespace
+
+std::string HostOriginProblem(const HttpRequest& request, int port) {
+  const std::string allowed = "vb_view answers only requests for localhost, 127.0.0.1 or [::1] "
+                              "on port " + std::to_string(port);
+  const auto host = request.headers.find("host");
+  if (host == request.headers.end()) return "the request has no Host header; " + allowed;
+  if (!IsLocalHost(host->second, port)) {
+    return "Host '" + host->second + "' is not this server; " + allowed;
+  }
+  const auto origin = request.headers.find("origin");
+  if (origin != request.headers.end()) {
+    const std::string o = origin->second;
+    const std::string scheme = "http://";
+    if (o.compare(0, scheme.size(), scheme) != 0 || !IsLocalHost(o.substr(scheme.size()), port)) {
+      return "Origin '" + o + "' is not this server's page; " + allowed;
+    }
+  }
+  return "";
+}
+
+ServedFile ResolveServedFile(const std::string& root, const std::string& path,
+                             uint64_t max_bytes) {
+  namespace fs = std::filesystem;
+  ServedFile f;
+  const auto refuse = [&](int status, const std::string& why) {
+    f.status = status;
+    f.problem = why;
+    return f;
+  };
+  std::error_code ec;
+  const fs::path real_root = fs::canonical(root, ec);
+  if (ec) return refuse(404, "does not exist (the served directory cannot be resolved)");
+  const fs::path real = fs::canonical(path, ec);
+  if (ec) return refuse(404, "does not exist");
+  const std::string r = real_root.string(), p = real.string();
+  const bool inside = r == "/" || (p.compare(0, r.size(), r) == 0 && p.size() > r.size() &&
+                                   p[r.size()] == '/');
+  if (!inside) return refuse(403, "resolves outside the served directory (a symbolic link out of it)");
+  struct stat st {};
+  if (::stat(p.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) return refuse(404, "does not exist");
+  if (static_cast<uint64_t>(st.st_size) > max_bytes) {
+    return refuse(413, "is " + std::to_string(st.st_size) + " bytes, more than the " +
+                           std::to_string(max_bytes) + " bytes vb_view serves");
+  }
+  f.resolved = p;
+  return f;
 }
 
 std::string SafeRelativePath(const std::string& url_path, const std::string& prefix) {

@@ -26,9 +26,11 @@ std::vector<std::string> Words(const std::string& text) {
 // A plain decimal number in [lo, hi]; false (with *error) otherwise.
 bool ParseBounded(const std::string& name, const std::string& text, double lo, double hi,
                   double* value, std::string* error) {
+  // strtod also reads hexadecimal ("0x1") and "inf"/"nan": only digits, sign, '.', exponent.
+  const bool plain = text.find_first_not_of("0123456789+-.eE") == std::string::npos;
   char* end = nullptr;
   const double v = std::strtod(text.c_str(), &end);
-  if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(v)) {
+  if (text.empty() || !plain || end != text.c_str() + text.size() || !std::isfinite(v)) {
     *error = name + " '" + text + "' is not a number";
     return false;
   }

@@ -7,10 +7,12 @@
 
 #include "io/batch_io.h"
 #include "io/cli_args.h"
+#include "io/data_dir.h"
 #include "io/result_io.h"
 #include "io/task_io.h"
 #include "io/task_ref.h"
 #include "io/vehicle_io.h"
+#include "io/yaml_strict.h"
 #include "vb/engine/error.h"
 #include "vb/engine/runner/episode.h"
 #include "view/scene_json.h"
@@ -21,7 +23,15 @@ namespace fs = std::filesystem;
 
 namespace {
 
-bool ReadText(const std::string& path, std::string* text) {
+// A trajectory of the longest trial (3600 s) at full rate is about 220 MB; larger is not read.
+constexpr uint64_t kMaxTrialTextBytes = 256ull << 20;
+
+// Reads a regular file of at most kMaxTrialTextBytes; false with *why otherwise (a sparse 64 GiB
+// trajectory was read whole and ended the server with bad_alloc: W06 of the probe at 8ff4def).
+bool ReadText(const std::string& path, std::string* text, std::string* why) {
+  *why = io::InputFileProblem(path, kMaxTrialTextBytes);
+  if (!why->empty()) return false;
+  *why = "cannot be read";
   // One read of the whole file (a full-rate trajectory is megabytes; streams copy it twice).
   std::FILE* f = std::fopen(path.c_str(), "rb");
   if (f == nullptr) return false;
@@ -157,8 +167,9 @@ std::string TrialBundleJson(const std::string& result_path, const BundleOptions&
   SceneCache* cache = options.cache != nullptr ? options.cache : &local;
   const batch::TrialRow row = io::ReadTrialJson(result_path);
   std::string result_text;
-  if (!ReadText(result_path, &result_text)) {
-    throw InputError(result_path, 0, "", "cannot read trial record");
+  std::string why;
+  if (!ReadText(result_path, &result_text, &why)) {
+    throw InputError(result_path, 0, "", "cannot read trial record: it " + why);
   }
   const SceneCache::Task& loaded = FindTask(result_path, row, options, cache);
   const terrain::TaskSpec& task = loaded.spec;
@@ -167,18 +178,13 @@ std::string TrialBundleJson(const std::string& result_path, const BundleOptions&
                      "pair " + std::to_string(row.pair) + " is not in task " + task.source_file +
                          " (" + std::to_string(task.pairs.size()) + " pairs)");
   }
-  const std::vector<std::string> vehicles = io::VehicleNames(options.data_dir);
-  if (std::find(vehicles.begin(), vehicles.end(), row.vehicle) == vehicles.end()) {
-    throw InputError(result_path, 0, "vehicle",
-                     "unknown vehicle '" + row.vehicle + "' in " + options.data_dir +
-                         "/vehicles; valid: " + io::JoinNames(vehicles));
-  }
-  const std::string& vehicle_json =
-      cache->GetVehicleJson(options.data_dir + "/vehicles/" + row.vehicle + ".yaml");
+  const std::string& vehicle_json = cache->GetVehicleJson(
+      io::ListedDataFile(options.data_dir, "vehicles", row.vehicle, "vehicle", result_path));
 
   const std::string traj_path = TrajectoryPathFor(result_path);
   std::string traj_text;
-  const bool have_traj = ReadText(traj_path, &traj_text);
+  std::string traj_problem;
+  const bool have_traj = ReadText(traj_path, &traj_text, &traj_problem);
   // The goal circle of the rules that decided the trial (the task's scene holds vb's).
   const runner::RuleSet rules = runner::ParseRuleSet("rules", row.rules, result_path);
   const double goal_radius_m =
@@ -190,7 +196,7 @@ std::string TrialBundleJson(const std::string& result_path, const BundleOptions&
                       ", \"trajectory_csv\": ";
   trial.append(have_traj ? JsonText(traj_text) : "null");
   trial.append(", \"trajectory_error\": ")
-      .append(have_traj ? "null" : io::JsonString("cannot read " + traj_path))
+      .append(have_traj ? "null" : io::JsonString("cannot read " + traj_path + ": it " + traj_problem))
       .append("}");
   return Bundle(loaded.scene_json, vehicle_json, row.pair, trial);
 }

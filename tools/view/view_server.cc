@@ -34,8 +34,6 @@ double NowSeconds() {
 }
 
 bool ReadFile(const std::string& path, std::string* text) {
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) return false;
   std::ifstream in(path, std::ios::binary);
   if (!in) return false;
   std::ostringstream ss;
@@ -45,10 +43,12 @@ bool ReadFile(const std::string& path, std::string* text) {
 }
 
 std::string StaticFile(const std::string& root, const std::string& rel, int cache_seconds = 0) {
+  if (rel.empty() || root.empty()) return HttpJsonError(404, "not found");
+  const ServedFile f =
+      ResolveServedFile(root, (fs::path(root) / rel).string(), kMaxServedFileBytes);
+  if (f.status != 200) return HttpJsonError(f.status, rel + " " + f.problem);
   std::string body;
-  if (rel.empty() || root.empty() || !ReadFile((fs::path(root) / rel).string(), &body)) {
-    return HttpJsonError(404, "not found");
-  }
+  if (!ReadFile(f.resolved, &body)) return HttpJsonError(404, "not found");
   return HttpResponse(200, ContentType(rel), body, cache_seconds);
 }
 
@@ -85,10 +85,8 @@ std::string Route(const ServerConfig& cfg, const HttpRequest& request) {
                                     "' is not a relative path inside the results root");
     }
     const std::string file = (fs::path(cfg.files_root) / rel).string();
-    std::error_code ec;
-    if (!fs::is_regular_file(file, ec)) {
-      return HttpJsonError(404, "trial record " + file + " does not exist");
-    }
+    const ServedFile f = ResolveServedFile(cfg.files_root, file, kMaxServedFileBytes);
+    if (f.status != 200) return HttpJsonError(f.status, "trial record " + file + " " + f.problem);
     try {
       return HttpResponse(200, "application/json; charset=utf-8",
                           TrialBundleJson(file, cfg.bundle));
@@ -124,6 +122,7 @@ struct ViewServer::Impl {
   int driver_fd = -1;          // the WebSocket connection that drives the teleop session
   int drives_recorded = 0;
   double next_state_s = 0.0;
+  double accept_paused_until_s = 0.0;   // accept back-off (EMFILE)
 
   void Accept();
   void ReadFrom(Connection& c);
@@ -177,9 +176,17 @@ std::string ViewServer::Respond(const HttpRequest& request) const {
 }
 
 void ViewServer::Impl::Accept() {
-  while (true) {
+  while (connections.size() < kMaxConnections) {
     const int fd = ::accept(listen_fd, nullptr, nullptr);
-    if (fd < 0) return;
+    if (fd < 0) {
+      // Out of descriptors: the pending connection stays in the queue and the listening socket
+      // stays readable, so polling it again at once would spin (W08 of the probe at 8ff4def).
+      // Wait a little instead; connections that close free descriptors meanwhile.
+      if (errno == EMFILE || errno == ENFILE || errno == ENOBUFS || errno == ENOMEM) {
+        accept_paused_until_s = NowSeconds() + kAcceptBackoff_s;
+      }
+      return;
+    }
     ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) | O_NONBLOCK);
     Connection c;
     c.fd = fd;
@@ -199,7 +206,16 @@ void ViewServer::Impl::HandleHttp(Connection& c) {
     c.in.clear();
     return;
   }
+  // What follows the head: WebSocket frames after an upgrade, else never read (one request per
+  // connection).
   c.in.erase(0, c.in.find("\r\n\r\n") + 4);
+  // Every request and every WebSocket upgrade: only this server's own pages (NEW-10).
+  const std::string foreign = HostOriginProblem(request, port);
+  if (!foreign.empty()) {
+    c.in.clear();
+    c.out += HttpJsonError(403, foreign);
+    return;
+  }
   const auto header = [&](const char* name) {
     const auto it = request.headers.find(name);
     return it == request.headers.end() ? std::string() : it->second;
@@ -220,7 +236,14 @@ void ViewServer::Impl::HandleHttp(Connection& c) {
     driver_fd = c.fd;
     return;
   }
-  c.out += Route(config, request);
+  c.in.clear();
+  try {
+    c.out += Route(config, request);
+  } catch (const std::exception& e) {
+    // One request's failure (out of memory for a bundle, say) is that request's 500, never the
+    // server's end.
+    c.out += HttpJsonError(500, std::string("internal error: ") + e.what());
+  }
 }
 
 void ViewServer::Impl::HandleWebSocket(Connection& c) {
@@ -281,6 +304,13 @@ void ViewServer::Impl::Tick() {
     } catch (const InputError& e) {
       message = "{\"type\": \"error\", \"message\": " + io::JsonString(e.what()) + "}";
       std::fprintf(stderr, "vb_view: error: %s\n", e.what());
+    } catch (const IoError& e) {
+      // A full disk loses this drive, not the session: the page is told, the operator can free
+      // space and drive again (NEW-3 of the probe at 8ff4def).
+      const std::string what = std::string("I/O error: ") + e.what() +
+                               "; the drive was not recorded";
+      message = "{\"type\": \"error\", \"message\": " + io::JsonString(what) + "}";
+      std::fprintf(stderr, "vb_view: %s\n", what.c_str());
     }
     if (driver != nullptr) {
       SendWs(*driver, session.StateJson());
@@ -306,12 +336,14 @@ void ViewServer::Run() {
       if (!pending) break;
     }
     fds.clear();
-    fds.push_back({m.listen_fd, POLLIN, 0});
+    const bool accepting = m.connections.size() < kMaxConnections &&
+                           NowSeconds() >= m.accept_paused_until_s;
+    fds.push_back({m.listen_fd, static_cast<short>(accepting ? POLLIN : 0), 0});
     for (const Connection& c : m.connections) {
       fds.push_back({c.fd, static_cast<short>(POLLIN | (c.out.empty() ? 0 : POLLOUT)), 0});
     }
     const bool driving = m.config.teleop != nullptr && m.config.teleop->driving();
-    const int timeout_ms = driving || draining ? 2 : 100;
+    const int timeout_ms = driving || draining || !accepting ? 2 : 100;
     ::poll(fds.data(), fds.size(), timeout_ms);
     if (fds[0].revents & POLLIN) m.Accept();
     for (size_t i = 1; i < fds.size(); ++i) {
@@ -323,14 +355,15 @@ void ViewServer::Run() {
             c.close_after_write = true;
             c.out.clear();
           }
-        } else {
+        } else if (c.websocket) {
           c.in.append(buf, static_cast<size_t>(n));
-          if (c.websocket) {
-            m.HandleWebSocket(c);
-          } else if (!c.close_after_write) {
-            m.HandleHttp(c);
-          }
+          m.HandleWebSocket(c);
+        } else if (!c.close_after_write) {
+          c.in.append(buf, static_cast<size_t>(n));
+          m.HandleHttp(c);
         }
+        // Else: bytes after an answered request are read and dropped, never kept (W07: a client
+        // that sent 2 GiB after its request grew the server by as much).
       }
       if (!c.out.empty()) {
         const ssize_t n = ::send(c.fd, c.out.data(), c.out.size(), MSG_NOSIGNAL);
@@ -347,6 +380,13 @@ void ViewServer::Run() {
     for (size_t i = 0; i < m.connections.size();) {
       Connection& c = m.connections[i];
       if (!c.websocket && !c.close_after_write && now - c.opened_s > m.config.http_idle_limit_s) {
+        c.close_after_write = true;
+        c.out.clear();
+      }
+      // A response nobody takes, or a page that stopped reading its WebSocket: closed.
+      const bool stuck = c.websocket ? c.out.size() > kMaxWebSocketBacklogBytes
+                                     : now - c.opened_s > m.config.http_response_limit_s;
+      if (stuck) {
         c.close_after_write = true;
         c.out.clear();
       }

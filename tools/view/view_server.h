@@ -15,6 +15,8 @@
 //   /ws                    teleoperation: WebSocket (one driver at a time; 409 for a second)
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <string>
@@ -23,6 +25,15 @@
 #include "view/trial_bundle.h"
 
 namespace vb::view {
+
+// The server's limits (docs/reliability.md "The servers' limits"): what one client can make it
+// hold or spend. Beyond each, the client gets an error response or its connection is closed; the
+// server goes on serving the others.
+constexpr uint64_t kMaxServedFileBytes = 256ull << 20;  // a file under /files/ or /viewer/ (413)
+constexpr size_t kMaxConnections = 64;          // open at once; more wait in the listen queue
+constexpr size_t kMaxWebSocketBacklogBytes = 8u << 20;   // unsent messages to a page that does
+                                                         // not read them: then it is closed
+constexpr double kAcceptBackoff_s = 0.25;       // no accept() this long after EMFILE/ENFILE
 
 struct ServerConfig {
   int port = 8765;                 // 0: any free port (the chosen one is printed and returned)
@@ -40,6 +51,9 @@ struct ServerConfig {
   // An HTTP connection without a whole request after this long is closed (a stuck or idle
   // client must not hold the server's attention forever). WebSocket connections are exempt.
   double http_idle_limit_s = 10.0;
+  // An HTTP connection whose response is not taken within this long of its opening is closed (a
+  // client that asks for a bundle and never reads it).
+  double http_response_limit_s = 120.0;
 };
 
 class ViewServer {

@@ -53,7 +53,16 @@ ConvexShape MakeConvexHull(const std::vector<Vec3>& points, double sample_spacin
 // The vertices of each face (indices into shape.vertices), counter-clockwise seen from outside,
 // in face order: what a picture of the shape draws.
 std::vector<std::vector<int>> FacePolygons(const ConvexShape& shape);
-// Adds the edge samples and the bounding box (after vertices, faces and edges are set).
+// Most sample points one shape may have: what a contact query may visit per step and what the
+// shape holds in memory (24 bytes each). The spacing comes from input (a vehicle's wheel radius,
+// a world's scale), so the count is checked before anything is allocated (NEW-4 of the probe at
+// 8ff4def: a 1e-6 m wheel asked for 1e8 samples and ran out of memory).
+constexpr double kMaxShapeSamples = 1 << 18;
+// The number of sample points FinishShape would make (vertices + interior points of every edge),
+// in floating point so that an absurd spacing cannot overflow it.
+double ShapeSampleCount(const ConvexShape& shape, double sample_spacing_m);
+// Adds the edge samples and the bounding box (after vertices, faces and edges are set). The
+// count must be at most kMaxShapeSamples (callers check ShapeSampleCount; a hull reports it).
 void FinishShape(double sample_spacing_m, ConvexShape* shape);
 
 }  // namespace vb::engine

@@ -92,6 +92,11 @@ struct TaskLimits {
   static constexpr double kMaxWorldScale = 1e3;
   static constexpr double kMaxRockScale = 100.0;   // a rock's box must also fit in the world
   static constexpr double kMaxWorldSize_m = 1e5;   // per side
+  // Heights (both ends of height_range_m) within +-1e9 m: one ulp of a coordinate there is
+  // 1.2e-7 m, still far below the contact and soil geometry (millimetres). Beyond it the
+  // positions of a vehicle or a rock lose the digits the simulation needs (NEW-14 of the probe at
+  // 8ff4def: at 1e12 .. 1e308 a boulder's hull came out flat or inside out).
+  static constexpr double kMaxAbsHeight_m = 1e9;
   static constexpr size_t kMaxObstacles = 10000;   // rocks + trees
   static constexpr int kMaxImageSide = 8192;       // height image pixels per side
   static constexpr size_t kMaxNameLength = 128;

@@ -74,6 +74,24 @@ class VehicleSnapshot {
   std::unique_ptr<Data> data_;
 };
 
+// What the vehicle derives from its parameters at build time and LoadVehicle checks at load
+// (tools/io/vehicle_io.cc), so that a vehicle that loads always builds:
+//
+// The spacing of the chassis envelope's sample points for obstacle contact: a tenth of the wheel
+// radius (a rock's edge may meet the body anywhere). At most engine::kMaxShapeSamples points per
+// envelope piece at this spacing.
+double EnvelopeObstacleSpacing_m(const VehicleParams& params);
+// The wheel travel range of a corner's carrier joint: the stops' engagement and stroke plus a hard
+// limit beyond them (a rigid axle: the hard limit only).
+struct TravelRange {
+  double lower_m = 0.0;   // rebound (negative)
+  double upper_m = 0.0;   // bump
+};
+TravelRange CarrierTravel(const SuspensionParams& su);
+// The shock length table of a double-wishbone corner over its CarrierTravel, sampled every ~5 mm.
+// Throws std::runtime_error if the linkage does not assemble somewhere in the range.
+Table1D CornerShockLengthTable(const SuspensionParams& su);
+
 class Vehicle {
  public:
   // Adds the vehicle to the world with its chassis reference frame at `pose_W`, wheels at their

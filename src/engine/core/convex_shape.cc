@@ -80,8 +80,19 @@ ConvexShape ConvexShape::Transformed(const Pose& pose) const {
   return out;
 }
 
+double ShapeSampleCount(const ConvexShape& s, double sample_spacing_m) {
+  double count = static_cast<double>(s.vertices.size());
+  for (const auto& [a, b] : s.edges) {
+    const double n = std::ceil((s.vertices[static_cast<size_t>(b)] -
+                                s.vertices[static_cast<size_t>(a)]).norm() / sample_spacing_m);
+    count += std::max(0.0, n - 1.0);
+  }
+  return count;
+}
+
 void FinishShape(double sample_spacing_m, ConvexShape* s) {
   VB_DEMAND(sample_spacing_m > 0.0);
+  VB_DEMAND(ShapeSampleCount(*s, sample_spacing_m) <= kMaxShapeSamples);
   s->samples = s->vertices;
   for (const auto& [a, b] : s->edges) {
     const Vec3 pa = s->vertices[static_cast<size_t>(a)];

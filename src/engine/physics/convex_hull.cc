@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <set>
 #include <string>
 
@@ -95,6 +96,15 @@ bool TryMakeConvexHull(const std::vector<Vec3>& points, double sample_spacing_m,
       continue;  // between two coplanar pieces of one face
     }
     s.edges.push_back(key);
+  }
+  const double samples = ShapeSampleCount(s, sample_spacing_m);
+  if (!(samples <= kMaxShapeSamples)) {
+    char buf[160];
+    std::snprintf(buf, sizeof(buf), "sampled every %.3g m for contact, its edges would give %.3g "
+                  "points, more than the limit of %.0f", sample_spacing_m, samples,
+                  kMaxShapeSamples);
+    *error = buf;
+    return false;
   }
   FinishShape(sample_spacing_m, &s);
   return true;
